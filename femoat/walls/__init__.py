@@ -1,0 +1,6 @@
+"""Moat walls: the SDOF idealization of the paper and its presets."""
+
+from femoat.walls.presets import DAMPING_CHOICES, PRESETS, WallPreset, wall_preset
+from femoat.walls.sdof import SdofWall
+
+__all__ = ["DAMPING_CHOICES", "PRESETS", "SdofWall", "WallPreset", "wall_preset"]
