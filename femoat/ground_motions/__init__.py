@@ -1,0 +1,27 @@
+"""Ground motions: records, readers, the FEMA P695 sets, the paper's Erzincan motion, spectra.
+
+Acceleration is carried in g (as published) on a uniform time grid t = n*dt; see
+:mod:`femoat.ground_motions.record` for the conventions.
+"""
+
+from .erzincan import PAPER_PGA, erzincan_ns, erzincan_paper
+from .fema import FEMA_P695_SETS, FemaP695Record, fema_p695_record, fema_p695_records
+from .peer import RecordFormatError, read_at2, read_text
+from .record import GroundMotion
+from .spectrum import ResponseSpectrum, response_spectrum
+
+__all__ = [
+    "FEMA_P695_SETS",
+    "PAPER_PGA",
+    "FemaP695Record",
+    "GroundMotion",
+    "RecordFormatError",
+    "ResponseSpectrum",
+    "erzincan_ns",
+    "erzincan_paper",
+    "fema_p695_record",
+    "fema_p695_records",
+    "read_at2",
+    "read_text",
+    "response_spectrum",
+]
