@@ -103,8 +103,13 @@ def contact_force(code, p, h, d, v):
 
 @njit(cache=True)
 def contact_closure(h, v):
-    """Record the history at gap closure: the approach velocity δ̇₀ = ``v`` [in/s]."""
+    """Start a new contact episode at gap closure with approach velocity δ̇₀ = ``v`` [in/s].
+
+    Each impact is a new loading of the contact surface: the bilinear law's largest indentation
+    starts again from zero.
+    """
     h[0] = v
+    h[1] = 0.0
 
 
 @njit(cache=True)

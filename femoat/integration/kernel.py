@@ -1,0 +1,412 @@
+"""The compiled time-stepping loop: implicit Newmark / HHT-α with Newton, adaptive steps, and
+contact events located inside the step.
+
+Everything here works on plain arrays prepared by :mod:`femoat.integration.packing`; nothing is
+allocated per step. The friendly, validated API is :func:`femoat.integration.solve.solve`.
+
+Model (relative to the ground, n DOFs)::
+
+    M·ü + C·u̇ + K·u + Σ_e f_e(u_i − u_j, u̇_i − u̇_j)·(e_i − e_j) + Σ_c f_c(δ_c, δ̇_c)·b_c = −r·a_g(t)
+
+with nonlinear two-node elements e (node j = −1 is the ground) and contacts c of indentation
+δ_c = b_c·u − gap_c (compressive force f_c ≥ 0 pushes the bodies apart).
+
+HHT-α (α in [−1/3, 0]; α = 0 is Newmark) balances
+M·a₁ + (1+α)·F(u₁, v₁) − α·F(u₀, v₀) = (1+α)·p₁ − α·p₀ with Newmark's kinematics.
+
+Step control: the Zienkiewicz-Xie local error h²·|β − 1/6|·|a₁ − a₀| per DOF, scaled by
+rtol·scale_i (with a separate, tighter scale vector while any contact is closed); steps never
+cross a sample of the ground record (a_g is linear between samples); a gap closing or opening
+inside a step shortens the step until it ends within gap_tol of δ = 0, where the contact episode
+starts (capturing δ̇₀) or ends.
+"""
+
+import numpy as np
+from numba import njit
+
+from femoat.contact.kernels import contact_closure, contact_commit, contact_force
+from femoat.structure.materials.kernels import material_commit, material_trial
+
+# Status codes returned by run_chunk.
+DONE, STOPPED, BUFFER_FULL, NEWTON_FAILED, STEP_TOO_SMALL = 0, 1, 2, 3, 4
+
+# Float options (fopt)
+F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCONTACT, \
+    F_GAPTOL = range(11)
+N_FOPT = 11
+# Integer options (iopt)
+I_MAXIT, I_RECORD_EVERY = 0, 1
+N_IOPT = 2
+# Stats (stats), integer
+S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS, S_FAIL_INFO = range(7)
+N_STATS = 7
+# Energies (energy), float
+E_INPUT, E_VISCOUS = 0, 1
+N_ENERGY = 2
+
+
+@njit(cache=True)
+def ground_accel(ag, dt_rec, t):
+    """a_g(t) [in/s²], linear between samples, zero after the record."""
+    x = t / dt_rec
+    i = int(np.floor(x))
+    if i < 0:
+        return 0.0
+    if i >= ag.size - 1:
+        if i == ag.size - 1 and x - i < 1e-9:
+            return ag[ag.size - 1]
+        return 0.0
+    w = x - i
+    return (1.0 - w) * ag[i] + w * ag[i + 1]
+
+
+@njit(cache=True)
+def _solve_dense(A, b, n):
+    # Gaussian elimination with partial pivoting, in place; the solution overwrites b.
+    for k in range(n):
+        p = k
+        amax = abs(A[k, k])
+        for i in range(k + 1, n):
+            if abs(A[i, k]) > amax:
+                amax = abs(A[i, k])
+                p = i
+        if amax == 0.0:
+            return False
+        if p != k:
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[p, j]
+                A[p, j] = tmp
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+        piv = A[k, k]
+        for i in range(k + 1, n):
+            f = A[i, k] / piv
+            if f != 0.0:
+                for j in range(k, n):
+                    A[i, j] -= f * A[k, j]
+                b[i] -= f * b[k]
+    for k in range(n - 1, -1, -1):
+        s = b[k]
+        for j in range(k + 1, n):
+            s -= A[k, j] * b[j]
+        b[k] = s / A[k, k]
+    return True
+
+
+@njit(cache=True)
+def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
+                    c_B, c_gap, c_code, c_P, c_H, c_f, c_d, F, KT, CT, want_tangent):
+    """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked."""
+    n = u.size
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += C[i, j] * v[j] + K[i, j] * u[j]
+        F[i] = s
+    if want_tangent:
+        for i in range(n):
+            for j in range(n):
+                KT[i, j] = K[i, j]
+                CT[i, j] = C[i, j]
+    for e in range(el_code.size):
+        i, j = el_i[e], el_j[e]
+        d = u[i] - (u[j] if j >= 0 else 0.0)
+        dv = v[i] - (v[j] if j >= 0 else 0.0)
+        f, kf, cf = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
+        el_f[e] = f
+        el_d[e] = d
+        F[i] += f
+        if j >= 0:
+            F[j] -= f
+        if want_tangent:
+            KT[i, i] += kf
+            CT[i, i] += cf
+            if j >= 0:
+                KT[j, j] += kf
+                KT[i, j] -= kf
+                KT[j, i] -= kf
+                CT[j, j] += cf
+                CT[i, j] -= cf
+                CT[j, i] -= cf
+    for c in range(c_code.size):
+        b = c_B[c]
+        d = -c_gap[c]
+        dv = 0.0
+        for i in range(n):
+            d += b[i] * u[i]
+            dv += b[i] * v[i]
+        f, kf, cf = contact_force(c_code[c], c_P[c], c_H[c], d, dv)
+        c_f[c] = f
+        c_d[c] = d
+        if f != 0.0 or kf != 0.0 or cf != 0.0:
+            for i in range(n):
+                if b[i] != 0.0:
+                    F[i] += f * b[i]
+                    if want_tangent:
+                        for j in range(n):
+                            if b[j] != 0.0:
+                                KT[i, j] += kf * b[i] * b[j]
+                                CT[i, j] += cf * b[i] * b[j]
+
+
+@njit(cache=True)
+def _crossing(d0, dd0, d1, dd1, h):
+    """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero."""
+    th = d0 / (d0 - d1) if d0 != d1 else 0.5
+    for _ in range(12):
+        t2 = th * th
+        t3 = t2 * th
+        p = (2 * t3 - 3 * t2 + 1) * d0 + (t3 - 2 * t2 + th) * h * dd0 \
+            + (-2 * t3 + 3 * t2) * d1 + (t3 - t2) * h * dd1
+        dp = (6 * t2 - 6 * th) * d0 + (3 * t2 - 4 * th + 1) * h * dd0 \
+            + (-6 * t2 + 6 * th) * d1 + (3 * t2 - 2 * th) * h * dd1
+        if dp == 0.0:
+            break
+        step = p / dp
+        th_new = min(1.0, max(0.0, th - step))
+        if abs(th_new - th) < 1e-14:
+            th = th_new
+            break
+        th = th_new
+    return th
+
+
+@njit(cache=True)
+def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
+              M, C, K, r, ag,
+              el_i, el_j, el_code, el_P, el_S, el_f, el_d, el_W,
+              c_B, c_gap, c_code, c_P, c_H, c_f, c_d, c_W, c_closed,
+              scale_open, scale_contact, fopt, iopt,
+              energy, stats,
+              out_t, out_u, out_v, out_a, out_ag, out_ef, out_ed, out_cf, out_cd, out_cv,
+              out_closed,
+              w_u, w_v, w_a, w_F, w_KT, w_CT, w_A, w_b, w_ef, w_ed, w_cf, w_cd):
+    """Advance from state_t[0] to min(t_stop, t_end); return a status code (see module)."""
+    n = u.size
+    beta, gamma, alpha = fopt[F_BETA], fopt[F_GAMMA], fopt[F_ALPHA]
+    rtol, hmax, hmin, ntol = fopt[F_RTOL], fopt[F_HMAX], fopt[F_HMIN], fopt[F_NTOL]
+    t_end, dt_rec, h_contact, gap_tol = fopt[F_TEND], fopt[F_DTREC], fopt[F_HCONTACT], fopt[F_GAPTOL]
+    maxit, rec_every = iopt[I_MAXIT], iopt[I_RECORD_EVERY]
+    nel, ncon = el_code.size, c_code.size
+    err_coef = abs(beta - 1.0 / 6.0)
+    n_samples = ag.size
+    t = state_t[0]
+    h = h_state[0]
+    since_record = 0
+    t_goal = min(t_stop, t_end)
+
+    while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
+        if stats[S_NOUT] >= out_t.size:
+            state_t[0] = t
+            h_state[0] = h
+            return BUFFER_FULL
+        # --- step size: never cross a record sample, never pass the goal
+        k_next = int(np.floor(t / dt_rec + 1e-9)) + 1
+        hh = min(h, hmax, t_goal - t)
+        if k_next <= n_samples - 1:
+            t_sample = k_next * dt_rec
+            if t_sample - t < hh:
+                hh = t_sample - t
+        t1 = t + hh
+        if t_goal - t1 < 1e-12 * max(1.0, t_goal):
+            t1 = t_goal
+        elif k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-12:
+            t1 = k_next * dt_rec
+        hh = t1 - t
+
+        any_closed = False
+        for c in range(ncon):
+            if c_closed[c]:
+                any_closed = True
+        # --- Newton on the Newmark/HHT step
+        c0 = 1.0 / (beta * hh * hh)
+        c1 = gamma / (beta * hh)
+        ag1 = ground_accel(ag, dt_rec, t1)
+        ag0 = pn_state[0]
+        for i in range(n):
+            w_u[i] = u[i] + hh * v[i] + 0.5 * hh * hh * a[i]
+        converged = False
+        it = 0
+        while it < maxit:
+            it += 1
+            for i in range(n):
+                w_a[i] = c0 * (w_u[i] - u[i] - hh * v[i]) - (0.5 / beta - 1.0) * a[i]
+                w_v[i] = v[i] + hh * ((1.0 - gamma) * a[i] + gamma * w_a[i])
+            _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
+                            c_B, c_gap, c_code, c_P, c_H, w_cf, w_cd, w_F, w_KT, w_CT, True)
+            for i in range(n):
+                s = 0.0
+                for j in range(n):
+                    s += M[i, j] * w_a[j]
+                p1 = -r[i] * ag1
+                p0 = -r[i] * ag0
+                w_b[i] = -(s + (1.0 + alpha) * (w_F[i] - p1) - alpha * (Fn[i] - p0))
+                for j in range(n):
+                    w_A[i, j] = c0 * M[i, j] + (1.0 + alpha) * (c1 * w_CT[i, j] + w_KT[i, j])
+            if not _solve_dense(w_A, w_b, n):
+                break
+            du = 0.0
+            finite = True
+            for i in range(n):
+                w_u[i] += w_b[i]
+                q = abs(w_b[i]) / scale_contact[i]
+                if q > du:
+                    du = q
+                if not np.isfinite(w_u[i]):
+                    finite = False
+            if not finite:
+                break
+            if du < ntol:
+                converged = True
+                break
+        stats[S_NEWTON] += it
+        if converged:
+            # final kinematics and forces at the converged displacement
+            for i in range(n):
+                w_a[i] = c0 * (w_u[i] - u[i] - hh * v[i]) - (0.5 / beta - 1.0) * a[i]
+                w_v[i] = v[i] + hh * ((1.0 - gamma) * a[i] + gamma * w_a[i])
+            _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
+                            c_B, c_gap, c_code, c_P, c_H, w_cf, w_cd, w_F, w_KT, w_CT, False)
+        if not converged:
+            stats[S_REJECT_NEWTON] += 1
+            h = hh * 0.25
+            if h < hmin:
+                state_t[0] = t
+                h_state[0] = h
+                stats[S_FAIL_INFO] = -1
+                return NEWTON_FAILED
+            continue
+
+        # --- local error
+        err = 0.0
+        for i in range(n):
+            sc = scale_contact[i] if any_closed else scale_open[i]
+            q = hh * hh * err_coef * abs(w_a[i] - a[i]) / (rtol * sc)
+            if q > err:
+                err = q
+        if err > 1.0 and hh > hmin:
+            stats[S_REJECT_ERR] += 1
+            h = hh * max(0.2, 0.9 * err ** (-1.0 / 3.0))
+            if h < hmin:
+                h = hmin
+            continue
+
+        # --- contact events inside the step
+        theta = 2.0
+        event_now = -1
+        for c in range(ncon):
+            d0, d1 = c_d[c], w_cd[c]
+            dd0 = 0.0
+            dd1 = 0.0
+            for i in range(n):
+                dd0 += c_B[c, i] * v[i]
+                dd1 += c_B[c, i] * w_v[i]
+            if not c_closed[c] and d1 > gap_tol:
+                if d0 >= -gap_tol:
+                    event_now = c  # already touching at the start of the step
+                else:
+                    th = _crossing(d0, dd0, d1, dd1, hh)
+                    if th < theta:
+                        theta = th
+            elif c_closed[c] and d1 < -gap_tol:
+                th = _crossing(d0, dd0, d1, dd1, hh)
+                if th < theta:
+                    theta = th
+        if event_now >= 0:
+            # closure at the current (committed) state: start the episode, redo the step small
+            dd0 = 0.0
+            for i in range(n):
+                dd0 += c_B[event_now, i] * v[i]
+            c_closed[event_now] = 1
+            contact_closure(c_H[event_now], max(dd0, 0.0))
+            stats[S_EVENTS] += 1
+            h = min(hh, h_contact)
+            continue
+        if theta <= 1.0:
+            h_new = hh * theta
+            if h_new >= hmin and h_new < hh * (1.0 - 1e-12):
+                stats[S_REJECT_ERR] += 1
+                h = h_new
+                continue
+            # the crossing is within the smallest step: take this step as the event step
+
+        # --- accept: energies, commits, contact episode changes, output
+        for i in range(n):
+            du_i = w_u[i] - u[i]
+            energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
+            cv0 = 0.0
+            cv1 = 0.0
+            for j in range(n):
+                cv0 += C[i, j] * v[j]
+                cv1 += C[i, j] * w_v[j]
+            energy[E_VISCOUS] += 0.5 * (cv0 + cv1) * du_i
+        for e in range(nel):
+            el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
+            i, j = el_i[e], el_j[e]
+            dv = w_v[i] - (w_v[j] if j >= 0 else 0.0)
+            material_commit(el_code[e], el_P[e], el_S[e], w_ed[e], dv)
+            el_f[e] = w_ef[e]
+            el_d[e] = w_ed[e]
+        toggled = False
+        for c in range(ncon):
+            c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
+            contact_commit(c_H[c], w_cd[c])
+            c_f[c] = w_cf[c]
+            c_d[c] = w_cd[c]
+            dd1 = 0.0
+            for i in range(n):
+                dd1 += c_B[c, i] * w_v[i]
+            if not c_closed[c] and w_cd[c] >= -gap_tol and dd1 > 0.0:
+                c_closed[c] = 1
+                contact_closure(c_H[c], dd1)
+                toggled = True
+                stats[S_EVENTS] += 1
+            elif c_closed[c] and w_cd[c] <= gap_tol and dd1 < 0.0:
+                c_closed[c] = 0
+                toggled = True
+                stats[S_EVENTS] += 1
+        for i in range(n):
+            u[i] = w_u[i]
+            v[i] = w_v[i]
+            a[i] = w_a[i]
+            Fn[i] = w_F[i]
+        pn_state[0] = ag1
+        t = t1
+        stats[S_STEPS] += 1
+        # next step size
+        grow = 2.0 if err < 1e-12 else min(2.0, max(0.2, 0.9 * err ** (-1.0 / 3.0)))
+        h = hh * grow
+        now_closed = False
+        for c in range(ncon):
+            if c_closed[c]:
+                now_closed = True
+        if toggled and now_closed:
+            h = min(h, h_contact)
+        # output
+        since_record += 1
+        if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:
+            since_record = 0
+            k = stats[S_NOUT]
+            out_t[k] = t
+            out_ag[k] = ag1
+            for i in range(n):
+                out_u[k, i] = u[i]
+                out_v[k, i] = v[i]
+                out_a[k, i] = a[i]
+            for e in range(nel):
+                out_ef[k, e] = el_f[e]
+                out_ed[k, e] = el_d[e]
+            for c in range(ncon):
+                out_cf[k, c] = c_f[c]
+                out_cd[k, c] = c_d[c]
+                dd1 = 0.0
+                for i in range(n):
+                    dd1 += c_B[c, i] * v[i]
+                out_cv[k, c] = dd1
+                out_closed[k, c] = c_closed[c]
+            stats[S_NOUT] = k + 1
+    state_t[0] = t
+    h_state[0] = h
+    return DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED

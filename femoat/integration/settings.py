@@ -1,0 +1,73 @@
+"""Integrator settings: Newmark average acceleration (default) or HHT-α, and step control."""
+
+import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Integrator:
+    """How to integrate (the *how* and *how big* of a run).
+
+    Parameters
+    ----------
+    alpha : float
+        HHT-α parameter in [−1/3, 0]; 0 is Newmark's average acceleration (no numerical
+        damping). β = (1−α)²/4 and γ = (1−2α)/2.
+    rtol : float
+        Accuracy knob [-]: the local error of a step (Zienkiewicz-Xie estimate) is kept below
+        rtol × the DOF's scale [in] (the gap while all gaps are open, δ_me for the base mat and
+        the walls while any contact is closed). Smaller is more accurate and slower.
+    max_step : float or None
+        Largest step [s]; ``None`` means the ground record's sample interval (steps never cross a
+        sample anyway, so the excitation is exactly piecewise linear).
+    min_step : float
+        Smallest step [s]; a step that cannot converge at this size stops the run with an error.
+    newton_tol : float
+        Newton convergence: largest correction / DOF scale [-].
+    max_newton : int
+        Newton iterations per step attempt before the step is cut.
+    contact_steps : float
+        The first step after a gap closes is (local contact half-period)/contact_steps.
+    record_every : int
+        Keep every k-th step of the open phase in the output (contact steps are always kept).
+    """
+
+    alpha: float = 0.0
+    rtol: float = 1e-4
+    max_step: float | None = None
+    min_step: float = 1e-10
+    newton_tol: float = 1e-10
+    max_newton: int = 30
+    contact_steps: float = 20.0
+    record_every: int = 1
+
+    def __post_init__(self):
+        if not (-1.0 / 3.0 - 1e-12 <= self.alpha <= 0.0):
+            raise ValueError(f"alpha = {self.alpha!r} must be in [-1/3, 0] (HHT-α).")
+        if not (math.isfinite(self.rtol) and 0 < self.rtol < 0.1):
+            raise ValueError(f"rtol = {self.rtol!r} must be in (0, 0.1).")
+        if self.max_step is not None and not (math.isfinite(self.max_step) and self.max_step > 0):
+            raise ValueError(f"max_step = {self.max_step!r} must be a positive time [s] or None.")
+        if not (math.isfinite(self.min_step) and self.min_step > 0):
+            raise ValueError(f"min_step = {self.min_step!r} must be a positive time [s].")
+        if not (0 < self.newton_tol < 1e-3):
+            raise ValueError(f"newton_tol = {self.newton_tol!r} must be in (0, 1e-3).")
+        if int(self.max_newton) < 2:
+            raise ValueError(f"max_newton = {self.max_newton!r} must be at least 2.")
+        if not self.contact_steps >= 2:
+            raise ValueError(f"contact_steps = {self.contact_steps!r} must be >= 2.")
+        if int(self.record_every) < 1:
+            raise ValueError(f"record_every = {self.record_every!r} must be >= 1.")
+
+    @property
+    def beta(self):
+        return (1.0 - self.alpha) ** 2 / 4.0
+
+    @property
+    def gamma(self):
+        return 0.5 - self.alpha
+
+    @classmethod
+    def hht(cls, alpha=-0.05, **kw):
+        """HHT-α preset (numerical damping of high frequencies)."""
+        return cls(alpha=alpha, **kw)

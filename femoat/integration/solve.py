@@ -1,0 +1,255 @@
+"""Run the compiled loop on a packed model: validation, buffers, status → exceptions."""
+
+import math
+import time as _time
+from dataclasses import dataclass
+
+import numpy as np
+
+from femoat.integration import kernel as kn
+from femoat.integration.settings import Integrator
+
+
+class SolverError(RuntimeError):
+    """The time stepping could not continue; the message says where and what to change."""
+
+
+@dataclass
+class RawHistory:
+    """What the loop recorded, trimmed to the steps taken (units: s, in, in/s, in/s², kip)."""
+
+    t: np.ndarray
+    u: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    ag: np.ndarray
+    el_force: np.ndarray
+    el_deformation: np.ndarray
+    contact_force: np.ndarray
+    indentation: np.ndarray
+    indentation_rate: np.ndarray
+    closed: np.ndarray
+    stats: dict
+    energy: dict
+
+
+def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
+          chunks=20):
+    """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
+
+    Parameters
+    ----------
+    packed : PackedModel
+    ag : array
+        Ground acceleration samples [in/s²] at t = k·dt_rec.
+    dt_rec : float
+        Sample interval of ``ag`` [s].
+    duration : float
+        Length of the analysis [s] (may exceed the record; a_g = 0 afterwards).
+    integrator : Integrator
+    u0, v0 : arrays or None
+        Initial relative displacements [in] and velocities [in/s].
+    progress : callable or None
+        Called as progress(t, duration) after each chunk.
+    """
+    integ = integrator or Integrator()
+    ag = np.ascontiguousarray(ag, dtype=float)
+    if ag.ndim != 1 or ag.size < 2 or not np.all(np.isfinite(ag)):
+        raise ValueError("ag must be a 1-D array of at least 2 finite accelerations [in/s²].")
+    if not (math.isfinite(dt_rec) and dt_rec > 0):
+        raise ValueError(f"dt_rec = {dt_rec!r} must be a positive sample interval [s].")
+    if not (math.isfinite(duration) and duration > 0):
+        raise ValueError(f"duration = {duration!r} must be a positive time [s].")
+    n = packed.n
+    u = np.zeros(n) if u0 is None else np.array(u0, dtype=float)
+    v = np.zeros(n) if v0 is None else np.array(v0, dtype=float)
+    if u.shape != (n,) or v.shape != (n,) or not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+        raise ValueError(f"u0 and v0 must be finite arrays of length {n} ({packed.dof_names}).")
+
+    # DOF scales [in] for error control: the gap while open, δ_me near contacts while closed.
+    gaps = packed.c_gap
+    gap_scale = float(np.max(gaps)) if gaps.size and np.max(gaps) > 0 else 1.0
+    d_me = min((w.law.params.delta_me for w in packed.walls), default=gap_scale)
+    scale_open = np.full(n, gap_scale)
+    scale_contact = scale_open.copy()
+    scale_contact[0] = d_me
+    scale_contact[packed.n_struct:] = d_me
+    # first step after closure: a fraction of the local contact half-period π·√(m/k_eff)
+    h_contact = math.inf
+    for c, w in enumerate(packed.walls):
+        m_local = min(packed.M[0, 0], min(packed.M[i, i] for i in range(packed.n_struct, n)
+                                          if packed.c_B[c, i] != 0.0))
+        h_contact = min(h_contact, math.pi * math.sqrt(m_local / w.law.params.k_eff))
+    h_contact = h_contact / integ.contact_steps if math.isfinite(h_contact) else dt_rec
+
+    fopt = np.zeros(kn.N_FOPT)
+    fopt[kn.F_BETA], fopt[kn.F_GAMMA], fopt[kn.F_ALPHA] = integ.beta, integ.gamma, integ.alpha
+    fopt[kn.F_RTOL] = integ.rtol
+    fopt[kn.F_HMAX] = integ.max_step if integ.max_step is not None else dt_rec
+    fopt[kn.F_HMIN] = integ.min_step
+    fopt[kn.F_NTOL] = integ.newton_tol
+    fopt[kn.F_TEND] = duration
+    fopt[kn.F_DTREC] = dt_rec
+    fopt[kn.F_HCONTACT] = h_contact
+    fopt[kn.F_GAPTOL] = 1e-3 * integ.rtol * d_me
+    iopt = np.array([integ.max_newton, integ.record_every], dtype=np.int64)
+
+    # working copies of states (the packed model stays reusable)
+    el_S, c_H = packed.el_S.copy(), packed.c_H.copy()
+    nel, ncon = packed.el_code.size, packed.c_code.size
+    el_f, el_d, el_W = np.zeros(nel), np.zeros(nel), np.zeros(nel)
+    c_f, c_d, c_W = np.zeros(ncon), np.zeros(ncon), np.zeros(ncon)
+    c_closed = np.zeros(ncon, dtype=np.int64)
+    w = dict(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
+             CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
+             ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon))
+
+    # initial equilibrium: M·a0 = p0 − F(u0, v0)
+    ag0 = kn.ground_accel(ag, dt_rec, 0.0)
+    Fn = np.zeros(n)
+    kn._internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
+                       packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
+                       packed.c_code, packed.c_P, c_H, c_f, c_d, Fn, w["KT"], w["CT"], False)
+    a = np.linalg.solve(packed.M, -packed.r * ag0 - Fn)
+    for c in range(ncon):
+        if c_d[c] > 0:
+            raise ValueError(
+                f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
+                f"{c_d[c]:.3g} in); start the base mat inside the gap.")
+
+    cap = 4096
+    bufs = _buffers(cap, n, nel, ncon)
+    energy = np.zeros(kn.N_ENERGY)
+    stats = np.zeros(kn.N_STATS, dtype=np.int64)
+    state_t, h_state, pn_state = np.zeros(1), np.array([h_contact if ncon else dt_rec]), np.array([ag0])
+    h_state[0] = fopt[kn.F_HMAX]
+
+    cpu0 = _time.process_time()
+    targets = np.linspace(0, duration, chunks + 1)[1:]
+    k = 0
+    while True:
+        status = kn.run_chunk(
+            targets[k], state_t, h_state, u, v, a, Fn, pn_state,
+            packed.M, packed.C, packed.K, packed.r, ag,
+            packed.el_i, packed.el_j, packed.el_code, packed.el_P, el_S, el_f, el_d, el_W,
+            packed.c_B, packed.c_gap, packed.c_code, packed.c_P, c_H, c_f, c_d, c_W, c_closed,
+            scale_open, scale_contact, fopt, iopt, energy, stats,
+            *[bufs[key] for key in _BUF_KEYS],
+            w["u"], w["v"], w["a"], w["F"], w["KT"], w["CT"], w["A"], w["b"], w["ef"], w["ed"],
+            w["cf"], w["cd"],
+        )
+        if status == kn.BUFFER_FULL:
+            cap *= 2
+            bufs = _grow(bufs, cap)
+            continue
+        if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
+            raise SolverError(_failure_message(packed, state_t[0], u, v, c_closed, integ))
+        if progress is not None:
+            progress(state_t[0], duration)
+        if status == kn.DONE:
+            break
+        k = min(k + 1, chunks - 1)
+    cpu = _time.process_time() - cpu0
+
+    m = stats[kn.S_NOUT]
+    t0 = np.zeros(1)
+    hist = RawHistory(
+        t=np.concatenate([t0, bufs["t"][:m]]),
+        u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), bufs["u"][:m]]),
+        v=np.vstack([np.array(v0 if v0 is not None else np.zeros(n), float), bufs["v"][:m]]),
+        a=np.vstack([np.linalg.solve(packed.M, -packed.r * ag0 - _f0(packed, u0, v0)), bufs["a"][:m]]),
+        ag=np.concatenate([[ag0], bufs["ag"][:m]]),
+        el_force=np.vstack([np.zeros((1, nel)), bufs["ef"][:m]]),
+        el_deformation=np.vstack([np.zeros((1, nel)), bufs["ed"][:m]]),
+        contact_force=np.vstack([np.zeros((1, ncon)), bufs["cf"][:m]]),
+        indentation=np.vstack([-packed.c_gap[None, :], bufs["cd"][:m]]),
+        indentation_rate=np.vstack([np.zeros((1, ncon)), bufs["cv"][:m]]),
+        closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), bufs["closed"][:m]]),
+        stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
+                   rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
+                   newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
+                   cpu_seconds=cpu, recorded=int(m)),
+        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy),
+    )
+    hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
+    return hist
+
+
+def _f0(packed, u0, v0):
+    n = packed.n
+    u = np.zeros(n) if u0 is None else np.asarray(u0, float)
+    v = np.zeros(n) if v0 is None else np.asarray(v0, float)
+    return packed.C @ v + packed.K @ u + _el_force_vector(packed, u)
+
+
+def _el_force_vector(packed, u):
+    from femoat.structure.materials import material_trial
+
+    F = np.zeros(packed.n)
+    for e in range(packed.el_code.size):
+        i, j = packed.el_i[e], packed.el_j[e]
+        d = u[i] - (u[j] if j >= 0 else 0.0)
+        f = material_trial(packed.el_code[e], packed.el_P[e], packed.el_S[e], d, 0.0)[0]
+        F[i] += f
+        if j >= 0:
+            F[j] -= f
+    return F
+
+
+_BUF_KEYS = ("t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv", "closed")
+
+
+def _buffers(cap, n, nel, ncon):
+    return dict(t=np.zeros(cap), u=np.zeros((cap, n)), v=np.zeros((cap, n)), a=np.zeros((cap, n)),
+                ag=np.zeros(cap), ef=np.zeros((cap, nel)), ed=np.zeros((cap, nel)),
+                cf=np.zeros((cap, ncon)), cd=np.zeros((cap, ncon)), cv=np.zeros((cap, ncon)),
+                closed=np.zeros((cap, ncon), dtype=np.int8))
+
+
+def _grow(bufs, cap):
+    out = {}
+    for key, arr in bufs.items():
+        new = np.zeros((cap,) + arr.shape[1:], dtype=arr.dtype)
+        new[: arr.shape[0]] = arr
+        out[key] = new
+    return out
+
+
+def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy):
+    from femoat.contact.kernels import contact_stored_energy
+    from femoat.structure.materials import material_recoverable_energy
+
+    kinetic = 0.5 * v @ packed.M @ v
+    linear_strain = 0.5 * u @ packed.K @ u
+    el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])
+                       for e in range(packed.el_code.size)])
+    c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
+                      for c in range(packed.c_code.size)])
+    el_diss = el_W - el_rec
+    iso = [e for e, name in enumerate(packed.el_names) if name == "isolator"]
+    sto = [e for e, name in enumerate(packed.el_names) if name != "isolator"]
+    out = dict(
+        input=float(energy[kn.E_INPUT]),
+        kinetic=float(kinetic),
+        recoverable=float(linear_strain + el_rec.sum() + c_rec.sum()),
+        hysteretic=float(el_diss[sto].sum()),
+        friction=float(el_diss[iso].sum()),
+        viscous=float(energy[kn.E_VISCOUS]),
+        contact=float((c_W - c_rec).sum()),
+    )
+    accounted = sum(out[k] for k in ("kinetic", "recoverable", "hysteretic", "friction",
+                                     "viscous", "contact"))
+    scale = max(abs(out["input"]), abs(accounted), 1e-300)
+    out["residual"] = float(abs(out["input"] - accounted) / scale) if scale > 1e-300 else 0.0
+    return out
+
+
+def _failure_message(packed, t, u, v, closed, integ):
+    where = ", ".join(f"{packed.c_names[c]} wall in contact" for c in range(closed.size)
+                      if closed[c]) or "all gaps open"
+    return (
+        f"The solver could not converge at t = {t:.6g} s ({where}; base displacement "
+        f"{u[0]:.4g} in, velocity {v[0]:.4g} in/s) even at the smallest step "
+        f"{integ.min_step:g} s. Check the contact and element parameters for extreme values, "
+        "or relax Integrator(newton_tol=...) / raise max_newton."
+    )

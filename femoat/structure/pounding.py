@@ -1,0 +1,188 @@
+"""A building and its moat walls: the model the time-stepping solver integrates.
+
+Sign convention: all DOFs are horizontal displacements relative to the ground, positive in +x.
+A wall on side +1 stands at +gap; on side −1 at −gap. A wall's DOFs are its modal coordinates
+(one for the SDOF wall), each positive in the direction away from the building, so that the
+indentation is δ = side·u_base − gap − Σ φ_i·q_i and a positive contact force pushes the base mat
+back and the wall away. Wall masses feel the ground acceleration.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from femoat.contact.laws import ContactLaw
+from femoat.structure.building import Building, initial_stiffness
+from femoat.structure.materials import Elastic
+from femoat.units import G
+from femoat.walls.sdof import SdofWall
+
+
+def wall_modes(wall):
+    """(masses [kip·s²/in], stiffnesses [kip/in], dampings [kip·s/in], φ at impact [-],
+    ground participation L_i = φ_iᵀ·M·ι [kip·s²/in]) of a wall's modes."""
+    if isinstance(wall, SdofWall):
+        one = np.ones(1)
+        return one * wall.mass, one * wall.stiffness, one * wall.damping, one, one * wall.mass
+    try:
+        return (np.asarray(wall.modal_masses, float), np.asarray(wall.modal_stiffnesses, float),
+                np.asarray(wall.modal_dampings, float), np.asarray(wall.impact_shape, float),
+                np.asarray(wall.ground_participation, float))
+    except AttributeError:
+        raise ValueError("wall must be an SdofWall or a modal wall (see femoat.walls).") from None
+
+
+@dataclass(frozen=True)
+class MoatWall:
+    """One moat wall and its contact.
+
+    Parameters
+    ----------
+    law : ContactLaw
+        The contact law between base mat and wall.
+    wall : SdofWall or modal wall
+        The wall behind the contact spring.
+    gap : float
+        Clearance between base mat and wall at rest [in], >= 0.
+    side : int
+        +1 for the wall at +gap, −1 for the wall at −gap.
+    """
+
+    law: ContactLaw
+    wall: object
+    gap: float = 4.0
+    side: int = 1
+
+    def __post_init__(self):
+        if not isinstance(self.law, ContactLaw):
+            raise ValueError("law must be a ContactLaw (see femoat.contact.make_law).")
+        wall_modes(self.wall)
+        if not (math.isfinite(self.gap) and self.gap >= 0):
+            raise ValueError(f"gap = {self.gap!r} must be a clearance >= 0 [in].")
+        if self.side not in (1, -1):
+            raise ValueError(f"side = {self.side!r} must be +1 or -1.")
+
+
+@dataclass(frozen=True)
+class PoundingModel:
+    """A building with zero, one or two moat walls."""
+
+    building: Building
+    walls: tuple = ()
+
+    def __post_init__(self):
+        sides = [w.side for w in self.walls]
+        if len(set(sides)) != len(sides):
+            raise ValueError("walls: at most one wall per side (+1 and −1).")
+
+    def dof_names(self):
+        names = ["base"] + [f"floor{k + 1}" for k in range(len(self.building.floor_weights))]
+        for w in self.walls:
+            tag = "pos" if w.side > 0 else "neg"
+            nm = len(wall_modes(w.wall)[0])
+            names += [f"wall_{tag}"] if nm == 1 else [f"wall_{tag}_mode{i + 1}" for i in range(nm)]
+        return names
+
+    def pack(self):
+        """Arrays for the compiled loop (see :mod:`femoat.integration.kernel`)."""
+        b = self.building
+        nf = len(b.floor_weights)
+        n_struct = 1 + nf
+        modes = [wall_modes(w.wall) for w in self.walls]
+        n = n_struct + sum(len(m[0]) for m in modes)
+        M = np.zeros((n, n))
+        C = np.zeros((n, n))
+        K = np.zeros((n, n))
+        r = np.zeros(n)
+        weights = [b.base_weight, *b.floor_weights]
+        for i, w in enumerate(weights):
+            M[i, i] = w / G
+            r[i] = w / G
+        # story dashpots c = β·k0 between floor k and the one below
+        beta = b.story_damping_beta
+        for k, mat in enumerate(b.stories):
+            c = beta * initial_stiffness(mat)
+            i, j = k + 1, k
+            C[i, i] += c
+            C[j, j] += c
+            C[i, j] -= c
+            C[j, i] -= c
+        # nonlinear elements: isolator (base–ground), stories
+        elements = []
+        if b.isolator is not None:
+            elements.append((0, -1, b.isolator, "isolator"))
+        for k, mat in enumerate(b.stories):
+            elements.append((k + 1, k, mat, f"story{k + 1}"))
+        # walls: modal DOFs and contacts
+        contacts = []
+        col = n_struct
+        for w, (mm, kk, cc, phi, L) in zip(self.walls, modes):
+            bvec = np.zeros(n)
+            bvec[0] = w.side
+            for i in range(len(mm)):
+                M[col, col] = mm[i]
+                K[col, col] = kk[i]
+                C[col, col] = cc[i]
+                # the wall's modal coordinates point away from the building: ground load sign
+                r[col] = L[i] * w.side
+                bvec[col] = -phi[i]
+                col += 1
+            contacts.append((bvec, w))
+        return PackedModel(
+            M=M, C=C, K=K, r=r, n_struct=n_struct, dof_names=self.dof_names(),
+            el_i=np.array([e[0] for e in elements], dtype=np.int64),
+            el_j=np.array([e[1] for e in elements], dtype=np.int64),
+            el_code=np.array([e[2].code for e in elements], dtype=np.int64),
+            el_P=_stack([e[2].params() for e in elements]),
+            el_S=_stack([e[2].initial_state() for e in elements]),
+            el_names=[e[3] for e in elements],
+            el_materials=[e[2] for e in elements],
+            c_B=np.array([c[0] for c in contacts]).reshape(len(contacts), n),
+            c_gap=np.array([c[1].gap for c in contacts], dtype=float),
+            c_code=np.array([c[1].law.code for c in contacts], dtype=np.int64),
+            c_P=_stack([c[1].law.packed() for c in contacts], width=11),
+            c_H=np.zeros((len(contacts), 2)),
+            c_names=["pos" if c[1].side > 0 else "neg" for c in contacts],
+            walls=self.walls,
+        )
+
+
+def _stack(rows, width=None):
+    if not rows:
+        return np.zeros((0, width or 1))
+    w = max(len(r) for r in rows)
+    out = np.zeros((len(rows), w))
+    for i, row in enumerate(rows):
+        out[i, : len(row)] = row
+    return out
+
+
+@dataclass
+class PackedModel:
+    """Plain arrays of a :class:`PoundingModel` (mutable copies: the loop updates states)."""
+
+    M: np.ndarray
+    C: np.ndarray
+    K: np.ndarray
+    r: np.ndarray
+    n_struct: int
+    dof_names: list
+    el_i: np.ndarray
+    el_j: np.ndarray
+    el_code: np.ndarray
+    el_P: np.ndarray
+    el_S: np.ndarray
+    el_names: list
+    el_materials: list
+    c_B: np.ndarray
+    c_gap: np.ndarray
+    c_code: np.ndarray
+    c_P: np.ndarray
+    c_H: np.ndarray
+    c_names: list
+    walls: tuple
+
+    @property
+    def n(self):
+        return self.M.shape[0]
