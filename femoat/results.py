@@ -1,0 +1,249 @@
+"""Results of a building run: histories, the impact table, the peak summary, save and load.
+
+Files are NumPy ``.npz`` archives: every array is stored under a descriptive name, and a JSON
+document (``meta``) holds the units of each array, the DOF/element/contact names, the impact
+table, the peak summary, the energy balance and solver statistics. We chose it over NetCDF to keep
+the core free of xarray/netCDF4 (heavy, and not needed elsewhere), while staying self-describing:
+``numpy.load`` reads it anywhere and ``meta`` says what each array is.
+"""
+
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from femoat.atomic import atomic_path
+from femoat.units import G
+
+ARRAY_UNITS = {
+    "time": "s",
+    "displacement": "in (relative to ground, per DOF)",
+    "velocity": "in/s (relative, per DOF)",
+    "acceleration": "in/s^2 (relative, per DOF)",
+    "ground_acceleration": "in/s^2",
+    "element_force": "kip (per element)",
+    "element_deformation": "in (per element)",
+    "contact_force": "kip (per contact)",
+    "indentation": "in (per contact; negative = open gap)",
+    "indentation_rate": "in/s (per contact; positive = approaching)",
+    "contact_closed": "1 while a contact episode is open",
+}
+
+
+@dataclass
+class RunResult:
+    """A building run (units in brackets on each accessor)."""
+
+    time: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    ground_acceleration: np.ndarray
+    element_force: np.ndarray
+    element_deformation: np.ndarray
+    contact_force: np.ndarray
+    indentation: np.ndarray
+    indentation_rate: np.ndarray
+    contact_closed: np.ndarray
+    meta: dict = field(default_factory=dict)
+
+    # ---- construction -------------------------------------------------------------------
+    @classmethod
+    def from_history(cls, hist, packed, info=None):
+        """Assemble from the solver's raw history and the packed model it ran on."""
+        ncon = packed.c_code.size
+        wall_cols = []
+        for c in range(ncon):
+            cols = [i for i in range(packed.n_struct, packed.n) if packed.c_B[c, i] != 0.0]
+            wall_cols.append(dict(cols=cols, phi=[-packed.c_B[c, i] for i in cols],
+                                  k=[packed.K[i, i] for i in cols],
+                                  c=[packed.C[i, i] for i in cols]))
+        story_c = []
+        for name, e_i, e_j in zip(packed.el_names, packed.el_i, packed.el_j):
+            story_c.append(float(-packed.C[e_i, e_j]) if e_j >= 0 else 0.0)
+        meta = dict(
+            dof_names=list(packed.dof_names),
+            n_struct=int(packed.n_struct),
+            element_names=list(packed.el_names),
+            element_dashpots=story_c,
+            contact_names=list(packed.c_names),
+            gaps=[float(g) for g in packed.c_gap],
+            walls=wall_cols,
+            stats=hist.stats,
+            energy=hist.energy,
+            units=ARRAY_UNITS,
+            info=info or {},
+        )
+        r = cls(hist.t, hist.u, hist.v, hist.a, hist.ag, hist.el_force, hist.el_deformation,
+                hist.contact_force, hist.indentation, hist.indentation_rate,
+                hist.closed.astype(np.int8), meta)
+        r.meta["impacts"] = r._impact_table()
+        r.meta["peaks"] = r._peaks()
+        return r
+
+    # ---- derived channels ----------------------------------------------------------------
+    @property
+    def n_floors(self):
+        return self.meta["n_struct"] - 1
+
+    @property
+    def base_displacement(self):
+        """Base-mat displacement relative to the ground [in]."""
+        return self.displacement[:, 0]
+
+    def absolute_acceleration(self):
+        """Absolute accelerations of base mat and floors [in/s²] (columns: base, floor1...)."""
+        ns = self.meta["n_struct"]
+        return self.acceleration[:, :ns] + self.ground_acceleration[:, None]
+
+    def story_drifts(self):
+        """Interstory drifts u_k − u_{k−1} [in], one column per story (story 1 over the base)."""
+        u = self.displacement[:, : self.meta["n_struct"]]
+        return np.diff(u, axis=1)
+
+    def story_shears(self):
+        """Story shear: spring force plus parallel dashpot force [kip], one column per story."""
+        names = self.meta["element_names"]
+        cols = [i for i, nm in enumerate(names) if nm.startswith("story")]
+        if not cols:
+            return np.zeros((self.time.size, 0))
+        drift_rate = np.diff(self.velocity[:, : self.meta["n_struct"]], axis=1)
+        dash = np.array([self.meta["element_dashpots"][i] for i in cols])
+        return self.element_force[:, cols] + drift_rate * dash[None, :]
+
+    def wall_displacement(self, side=None):
+        """Wall displacement at the impact point, away from the building [in], per contact."""
+        out = np.zeros((self.time.size, len(self.meta["walls"])))
+        for c, w in enumerate(self.meta["walls"]):
+            for col, phi in zip(w["cols"], w["phi"]):
+                out[:, c] += phi * self.displacement[:, col]
+        return out if side is None else out[:, self._contact_index(side)]
+
+    def wall_force(self):
+        """Force in the wall's spring and dashpot [kip] (Σ over modes of k·q + c·q̇, weighted
+        by the impact-point shape), per contact: the 'vibrational spring' of Fig. 7."""
+        out = np.zeros((self.time.size, len(self.meta["walls"])))
+        for c, w in enumerate(self.meta["walls"]):
+            for col, phi, k, cc in zip(w["cols"], w["phi"], w["k"], w["c"]):
+                out[:, c] += (k * self.displacement[:, col] + cc * self.velocity[:, col]) / phi
+        return out
+
+    def _contact_index(self, side):
+        key = {"pos": "pos", "+": "pos", 1: "pos", "neg": "neg", "-": "neg", -1: "neg"}[side]
+        return self.meta["contact_names"].index(key)
+
+    # ---- impacts and peaks ---------------------------------------------------------------
+    def _impact_table(self):
+        rows = []
+        t = self.time
+        for c, name in enumerate(self.meta["contact_names"]):
+            closed = self.contact_closed[:, c].astype(bool)
+            f = self.contact_force[:, c]
+            starts = np.flatnonzero(closed & ~np.r_[False, closed[:-1]])
+            for s in starts:
+                e = s + 1
+                while e < t.size and closed[e]:
+                    e += 1
+                e = min(e, t.size - 1)
+                seg = slice(s, e + 1)
+                fs = f[seg]
+                pos = np.flatnonzero(fs > 0)
+                last = s + (pos[-1] + 1 if pos.size else 0)
+                last = min(last, e)
+                k = s + int(np.argmax(fs))
+                rows.append(dict(
+                    side=name,
+                    start=float(t[s]),
+                    duration=float(t[last] - t[s]),
+                    approach_velocity=float(self.indentation_rate[s, c]),
+                    peak_force=float(_parabolic_peak(t, f, k)),
+                    max_indentation=float(self.indentation[seg, c].max()),
+                    impulse=float(np.trapezoid(fs, t[seg])),
+                ))
+        rows.sort(key=lambda r: r["start"])
+        return rows
+
+    def _peaks(self):
+        imp = self.meta["impacts"]
+        ns = self.meta["n_struct"]
+        wall = self.wall_displacement()
+        out = {
+            "peak_impact_force": max((r["peak_force"] for r in imp), default=0.0),
+            "peak_impact_force_pos": max((r["peak_force"] for r in imp if r["side"] == "pos"),
+                                         default=0.0),
+            "peak_impact_force_neg": max((r["peak_force"] for r in imp if r["side"] == "neg"),
+                                         default=0.0),
+            "impacts_pos": sum(r["side"] == "pos" for r in imp),
+            "impacts_neg": sum(r["side"] == "neg" for r in imp),
+            "peak_base_displacement": float(np.abs(self.base_displacement).max()),
+            "peak_wall_displacement": float(np.abs(wall).max()) if wall.size else 0.0,
+            "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
+            "peak_impulse": max((r["impulse"] for r in imp), default=0.0),
+            "peak_drift": [float(x) for x in np.abs(self.story_drifts()).max(axis=0)],
+            "peak_floor_acceleration": [float(x) for x in
+                                        (np.abs(self.absolute_acceleration()[:, 1:ns]).max(axis=0) / G)],
+            "peak_base_acceleration": float(np.abs(self.absolute_acceleration()[:, 0]).max() / G),
+            "energy_residual": self.meta["energy"]["residual"],
+            "cpu_seconds": self.meta["stats"]["cpu_seconds"],
+            "steps": self.meta["stats"]["steps"],
+        }
+        return out
+
+    @property
+    def impacts(self):
+        """The impact table: one dict per contact episode (side, start [s], duration [s],
+        approach_velocity [in/s], peak_force [kip], max_indentation [in], impulse [kip·s])."""
+        return self.meta["impacts"]
+
+    @property
+    def peaks(self):
+        """Peak summary (JSON-ready)."""
+        return self.meta["peaks"]
+
+    @property
+    def energy(self):
+        """Energy balance [kip·in] and its relative residual."""
+        return self.meta["energy"]
+
+    # ---- persistence ---------------------------------------------------------------------
+    _ARRAYS = ("time", "displacement", "velocity", "acceleration", "ground_acceleration",
+               "element_force", "element_deformation", "contact_force", "indentation",
+               "indentation_rate", "contact_closed")
+
+    def save(self, path):
+        """Write to ``path`` (.npz), atomically."""
+        arrays = {k: getattr(self, k) for k in self._ARRAYS}
+        with atomic_path(path) as tmp:
+            with open(tmp, "wb") as fh:
+                np.savez_compressed(fh, meta=np.array(json.dumps(self.meta)), **arrays)
+
+    @classmethod
+    def load(cls, path):
+        """Read a file written by :meth:`save`."""
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                meta = json.loads(str(z["meta"]))
+                arrays = {k: z[k] for k in cls._ARRAYS}
+        except (OSError, KeyError, ValueError) as exc:
+            raise ValueError(f"{path}: not a femoat result file ({exc}).") from None
+        return cls(**arrays, meta=meta)
+
+
+def _parabolic_peak(t, f, k):
+    """Peak of f near sample k refined by the parabola through its neighbours."""
+    if k <= 0 or k >= f.size - 1:
+        return f[k]
+    t0, t1, t2 = t[k - 1], t[k], t[k + 1]
+    f0, f1, f2 = f[k - 1], f[k], f[k + 1]
+    if f0 <= 0.0 or f2 <= 0.0:
+        return f1
+    # vertex of the interpolating parabola (non-uniform spacing)
+    d1, d2 = (f1 - f0) / (t1 - t0), (f2 - f1) / (t2 - t1)
+    a = (d2 - d1) / (t2 - t0)
+    if a >= 0:
+        return f1
+    b = d1 - a * (t0 + t1)
+    tv = -b / (2 * a)
+    if not (t0 <= tv <= t2):
+        return f1
+    return max(f1, f0 + (tv - t0) * (d1 + a * (tv - t1)))
