@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from numba import njit
 
 from femoat.structure.materials import (
     BILINEAR,
@@ -92,6 +93,35 @@ def test_trial_leaves_committed_state_alone(m):
     for u in (-3.0, -0.1, 0.0, 0.7, 2.5):
         material_trial(m.code, p, s, u, -2.0)
     np.testing.assert_array_equal(s, before)
+
+
+@njit(cache=True)
+def _compiled_history(codes, params, states, path, dt):
+    """What a compiled time-stepping loop does: trial, then commit, for every element."""
+    out = np.empty((len(codes), len(path)))
+    for j in range(len(codes)):
+        u_prev = 0.0
+        for i in range(len(path)):
+            v = (path[i] - u_prev) / dt
+            f, _, _ = material_trial(codes[j], params[j], states[j], path[i], v)
+            material_commit(codes[j], params[j], states[j], path[i], v)
+            out[j, i] = f
+            u_prev = path[i]
+    return out
+
+
+def test_kernels_run_inside_a_compiled_loop():
+    # Ragged params/states travel as numba typed lists of float64 arrays.
+    from numba.typed import List
+
+    path = segments([0.0, 1.2, -0.9, 0.4], 0.01)
+    codes = np.array([m.code for m in ALL], dtype=np.int64)
+    params, states = List([m.params() for m in ALL]), List([m.initial_state() for m in ALL])
+    compiled = _compiled_history(codes, params, states, path, 0.01)
+    for j, m in enumerate(ALL):
+        v = np.diff(path, prepend=0.0) / 0.01
+        expected, _, _ = drive(m, path, v)
+        np.testing.assert_array_equal(compiled[j], expected)
 
 
 # ------------------------------------------------------------------------- friction pendulum

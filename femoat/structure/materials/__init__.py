@@ -4,14 +4,10 @@ Each material is a frozen dataclass (parameters with units, validated) that pack
 params array ``p`` and a virgin committed state ``s`` for the compiled kernels in
 :mod:`femoat.structure.materials.kernels`, selected by an integer code:
 
-============================  ==================  =====================================
-code                          class               params ``p``
-============================  ==================  =====================================
-``ELASTIC`` (0)               :class:`Elastic`    [k]
-``BILINEAR`` (1)              :class:`Bilinear`   [k0, Fy, b]
-``IMK`` (2)                   :class:`IMKBilinear`  [K0, as, My, Λ, c, θp, θpc, Res, θu, D]
-``FRICTION_PENDULUM`` (3)     :class:`FrictionPendulum`  [W, R, u_y, μ_slow, μ_fast, a, v_reg]
-============================  ==================  =====================================
+* ``ELASTIC`` (0), :class:`Elastic`: p = [k]
+* ``BILINEAR`` (1), :class:`Bilinear`: p = [k0, Fy, b]
+* ``IMK`` (2), :class:`IMKBilinear`: p = [K0, as, My, Λ, c, θp, θpc, Res, θu, D]
+* ``FRICTION_PENDULUM`` (3), :class:`FrictionPendulum`: p = [W, R, u_y, μ_slow, μ_fast, a, v_reg]
 
 Units: kip, in, s (:mod:`femoat.units`).
 """
