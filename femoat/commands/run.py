@@ -1,0 +1,46 @@
+"""``femoat run scenario.toml``: one building run described by a scenario file."""
+
+import json
+from pathlib import Path
+
+
+def add_parser(sub):
+    p = sub.add_parser(
+        "run",
+        help="run a scenario file (building, walls, law, motion, solver)",
+        description="Run the scenario described by a TOML file (see femoat.scenario for every "
+        "key) and write the results (run.npz), the impact table (impacts.csv) and figures to "
+        "the output folder.",
+    )
+    p.add_argument("scenario", type=Path, help="scenario TOML file")
+    p.add_argument("--out", type=Path, default=None,
+                   help="output folder (default: [output] folder of the scenario)")
+    p.add_argument("--json", action="store_true", help="print the peak summary as one JSON object")
+    p.add_argument("--no-figures", action="store_true", help="skip the figures")
+    return p
+
+
+def run(args):
+    from femoat.plotting import paper_figures as pf
+    from femoat.run import run as run_model
+    from femoat.scenario import load_scenario
+
+    sc = load_scenario(args.scenario)
+    out = args.out or sc.output_folder
+    result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time)
+    result.save(out / "run.npz")
+    from femoat.paper import write_outputs
+
+    law = sc.model.walls[0].law.kind if sc.model.walls else "-"
+    wall = sc.source.get("walls", {}).get("preset", "concrete")
+    write_outputs({(wall, law): result}, sc.motion, out, "scenario",
+                  figures=sc.figures and not args.no_figures)
+    if sc.figures and not args.no_figures:
+        pf.plot_global_response({(wall, law): result}, out / "global_response.png")
+    if args.json:
+        print(json.dumps(result.peaks))
+    else:
+        for k, v in result.peaks.items():
+            print(f"{k:28s} {v}")
+        print(f"wrote {out / 'run.npz'}")
+    return 0
