@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 
-def axis_coordinates(length, divisions, breaks=()):
+def axis_coordinates(length, divisions, breaks=(), name="divisions"):
     """Node coordinates on [0, length] [in] with element size <= length/divisions.
 
     Every value in ``breaks`` inside (0, length) becomes a node, so the impact point or the
@@ -13,7 +13,8 @@ def axis_coordinates(length, divisions, breaks=()):
     breaks is split uniformly.
     """
     if int(divisions) != divisions or divisions < 1:
-        raise ValueError(f"mesh divisions must be a positive integer, got {divisions!r}")
+        raise ValueError(f"{name} (elements along that side) must be a positive integer, got "
+                         f"{divisions!r}")
     size = length / divisions
     tol = 1e-9 * length
     cuts = sorted({0.0, float(length), *(float(b) for b in breaks if tol < b < length - tol)})

@@ -80,13 +80,13 @@ def beam_model(geometry, n_height=40, timoshenko=False, mesh=None):
     mesh : skfem.MeshLine1, optional  node heights z [in] (e.g. read from a file); its
         "impact" boundary, if any, marks the impact node, else the node nearest impact_height
     Returns a :class:`WallModel` (kind "beam"); ``impact`` is the unit vector of w at the impact
-    node.
+    node (the beam takes the impact at a point: the patch size does not enter).
     """
     from skfem import MeshLine1
 
     g, mat = geometry, geometry.material
     if mesh is None:
-        z = axis_coordinates(g.height, n_height, breaks=[g.impact_height])
+        z = axis_coordinates(g.height, n_height, [g.impact_height], "n_height")
         mesh = MeshLine1.init_tensor(z)
     z = mesh.p[0]
     order = np.argsort(z)

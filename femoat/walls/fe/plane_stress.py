@@ -19,8 +19,8 @@ def plane_mesh(geometry, n_height=20, n_thickness=2):
 
     g = geometry
     z0, z1 = g.patch_z
-    x = axis_coordinates(g.thickness, n_thickness)
-    z = axis_coordinates(g.height, n_height, breaks=[z0, z1])
+    x = axis_coordinates(g.thickness, n_thickness, (), "n_thickness")
+    z = axis_coordinates(g.height, n_height, [z0, z1], "n_height")
     tol = 1e-9 * g.height
     return MeshQuad1.init_tensor(x, z).with_boundaries({
         "base": lambda p: np.abs(p[1]) < tol,

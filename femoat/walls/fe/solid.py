@@ -21,9 +21,9 @@ def solid_mesh(geometry, n_height=16, n_length=8, n_thickness=2):
     g = geometry
     y0, y1 = g.patch_y
     z0, z1 = g.patch_z
-    x = axis_coordinates(g.thickness, n_thickness)
-    y = axis_coordinates(g.length, n_length, breaks=[y0, y1])
-    z = axis_coordinates(g.height, n_height, breaks=[z0, z1])
+    x = axis_coordinates(g.thickness, n_thickness, (), "n_thickness")
+    y = axis_coordinates(g.length, n_length, [y0, y1], "n_length")
+    z = axis_coordinates(g.height, n_height, [z0, z1], "n_height")
     tol = 1e-9 * max(g.height, g.length)
     return MeshHex1.init_tensor(x, y, z).with_boundaries({
         "base": lambda p: np.abs(p[2]) < tol,
