@@ -48,6 +48,10 @@ def test_tip_sdof_matches_closed_forms():
     assert r.M1 == pytest.approx(0.25 * m * L, rel=1e-4)
     assert r.K1 == pytest.approx(BETA1**4 / 4 * EI / L**3, rel=1e-4)
     assert BETA1**4 / 4 == pytest.approx(3.0906, abs=1e-4)
+    # rᵀMr of the consistent mass is the beam's mass m·L; mode 1 of a cantilever carries
+    # 61.3 % of it as effective mass (Chopra, Dynamics of Structures, uniform cantilever).
+    assert r.total_mass == pytest.approx(m * L, rel=1e-12)
+    assert r.effective_masses[0] / r.total_mass == pytest.approx(0.613, abs=1e-3)
     # Higher modes: β2 = 4.694091, β3 = 7.854757 (Blevins table 8-1).
     f = BETA1**2 / (2 * np.pi) * np.sqrt(EI / (m * L**4))
     assert r.frequencies[1] / f == pytest.approx((4.694091 / BETA1) ** 2, rel=1e-5)
@@ -108,6 +112,8 @@ def test_flexibility_fraction_tends_to_one_and_picks_n():
     assert model.impact @ modes.shapes == pytest.approx(np.ones(len(modes.mode_numbers)))
     assert modes.modal_stiffnesses == pytest.approx(
         (2 * np.pi * modes.frequencies) ** 2 * modes.modal_masses)
+    # Ground coupling of the impact-normalised modes: L_i = ψ_iᵀ·M·r.
+    assert modes.ground_factors == pytest.approx(modes.shapes.T @ (model.mass @ model.ground))
     # SDOF of mode 1 normalised at the impact point: M1 = ψᵀMψ.
     psi = modes.shapes[:, 0]
     assert r.M1 == pytest.approx(psi @ (model.mass @ psi), rel=1e-12)

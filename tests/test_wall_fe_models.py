@@ -118,3 +118,22 @@ def test_mesh_without_named_boundaries_is_refused():
     mesh = MeshQuad1.init_tensor(np.linspace(0, 5, 3), np.linspace(0, 100, 11))
     with pytest.raises(ValueError, match="impact"):
         plane_model(_slender(), mesh=mesh)
+
+
+def test_bad_mesh_and_mode_counts_name_the_parameter():
+    g = _slender()
+    with pytest.raises(ValueError, match="n_height"):
+        beam_model(g, n_height=0)
+    with pytest.raises(ValueError, match="n_length"):
+        solid_model(g, n_length=2.5)
+    with pytest.raises(ValueError, match="n_modes"):
+        modal_analysis(beam_model(g), 0)
+
+
+def test_pinned_solid_with_backfill_is_stable():
+    g = _slender(subgrade_modulus=0.05)
+    fixed = modal_analysis(solid_model(g, 10, 2, 1), 2)
+    pinned = modal_analysis(solid_model(g.with_(base="pinned"), 10, 2, 1), 2)
+    # Hinged on the base centre line: softer than clamped, held by the backfill.
+    f = pinned.frequencies[pinned.sdof_mode]
+    assert 0 < f < fixed.frequencies[fixed.sdof_mode]

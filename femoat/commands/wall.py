@@ -94,17 +94,21 @@ def run(args):
         "static_stiffness": result.static_stiffness,
         "sdof_mode": result.sdof_mode + 1,
         "effective_masses": result.effective_masses.tolist(),
+        "total_mass": result.total_mass,
         "impact_modes": {
             "mode_numbers": (modes.mode_numbers + 1).tolist(),
             "modal_masses": modes.modal_masses.tolist(),
             "modal_stiffnesses": modes.modal_stiffnesses.tolist(),
+            "ground_factors": modes.ground_factors.tolist(),
             "flexibility_fraction": modes.flexibility_fraction,
         },
         "geometry": asdict(geometry),
         "mesh_file": str(path),
         "units": {"K1": "kip/in", "M1": "kip*s^2/in", "modal_weight": "kip", "frequencies": "Hz",
                   "static_stiffness": "kip/in", "effective_masses": "kip*s^2/in",
-                  "modal_masses": "kip*s^2/in", "modal_stiffnesses": "kip/in",
+                  "total_mass": "kip*s^2/in", "modal_masses": "kip*s^2/in",
+                  "modal_stiffnesses": "kip/in", "ground_factors": "kip*s^2/in",
+                  "mode numbers": "1-based",
                   "mode shapes": "point data mode_<n>, scaled to unit peak displacement"},
     }
     if args.json:

@@ -30,11 +30,12 @@ class ModalResult:
     angular_frequencies : ndarray  [rad/s]
     shapes : ndarray (n_dofs, n_modes)  mass-normalised mode shapes [in/√(kip·s²/in)]
     impact_participation : ndarray  p_i = cᵀφ_i [1/√(kip·s²/in)]
-    participation_factors : ndarray  Γ_i = φ_iᵀ·M·r for a horizontal ground motion
-        [√(kip·s²/in)]
+    participation_factors : ndarray  Γ_i = φ_iᵀ·(M·r)_free for a horizontal ground motion, r
+        the rigid-body influence vector on all DOFs (supports included: with a consistent mass
+        the moving base also drags the free DOFs) [√(kip·s²/in)]
     effective_masses : ndarray  Γ_i² [kip·s²/in]
-    movable_mass : float  rᵀMr over the unsupported DOFs, the sum of all effective masses
-        [kip·s²/in]
+    total_mass : float  rᵀMr over all DOFs, the wall's translating mass [kip·s²/in]; the
+        effective masses of all modes add up to the part not carried by the supports
     static_flexibility : float  impact displacement per unit impact force cᵀK⁻¹c [in/kip]
     static_stiffness : float  its inverse [kip/in]
     sdof_mode : int  index of the fundamental impact mode (the lowest mode with p ≠ 0)
@@ -49,7 +50,7 @@ class ModalResult:
     impact_participation: np.ndarray
     participation_factors: np.ndarray
     effective_masses: np.ndarray
-    movable_mass: float
+    total_mass: float
     static_flexibility: float
     static_stiffness: float
     sdof_mode: int
@@ -66,13 +67,16 @@ class ModalResult:
 class ImpactModes:
     """The first modes that move the impact point, each normalised to unit impact displacement.
 
-    A modal wall in the solver is a set of uncoupled oscillators (m_i, k_i) driven by the impact
-    force: u_impact = Σ q_i, m_i·q̈_i + k_i·q_i = F.
+    A modal wall in the solver is a set of uncoupled oscillators driven by the impact force F
+    (positive pushing the wall toward the backfill) and the ground acceleration ü_g:
+    u_impact = Σ q_i,  m_i·q̈_i + k_i·q_i = F − L_i·ü_g  (q_i relative to the ground).
 
     mode_numbers : ndarray[int]  indices into the ModalResult modes
     frequencies : ndarray  [Hz]
     modal_masses : ndarray  m_i = 1/p_i² [kip·s²/in]
     modal_stiffnesses : ndarray  k_i = ω_i²·m_i [kip/in]
+    impact_participation : ndarray  p_i of the mass-normalised modes [1/√(kip·s²/in)]
+    ground_factors : ndarray  L_i = ψ_iᵀ·M·r = Γ_i/p_i [kip·s²/in]
     shapes : ndarray (n_dofs, n)  ψ_i = φ_i/p_i, unit displacement at the impact point [in/in]
     flexibility_fraction : float  Σ 1/k_i over these modes / static flexibility [-]
     """
@@ -81,6 +85,8 @@ class ImpactModes:
     frequencies: np.ndarray
     modal_masses: np.ndarray
     modal_stiffnesses: np.ndarray
+    impact_participation: np.ndarray
+    ground_factors: np.ndarray
     shapes: np.ndarray
     flexibility_fraction: float
 
@@ -131,13 +137,14 @@ def modal_analysis(model, n_modes=6):
         raise ValueError(f"non-positive eigenvalue {lam[0]:.3g}: the wall is not stable on its "
                          "supports; use base='fixed' or add a backfill")
     phi = phi / np.sqrt(np.einsum("im,im->m", phi, M @ phi))
-    c, r = model.impact[free], model.ground[free]
+    c = model.impact[free]
+    mass_r = model.mass @ model.ground
     p = c @ phi
     big = np.abs(p) > NEGLIGIBLE * np.abs(p).max()
     # Sign: unit impact displacement positive; other modes: largest component positive.
     sign = np.where(big, np.sign(p), np.sign(phi[np.abs(phi).argmax(axis=0), np.arange(phi.shape[1])]))
     phi, p = phi * sign, p * sign
-    gamma = phi.T @ (M @ r)
+    gamma = phi.T @ mass_r[free]
     flex = c @ lu.solve(c)
     omega = np.sqrt(lam)
     if not big.any():
@@ -153,7 +160,7 @@ def modal_analysis(model, n_modes=6):
         impact_participation=p,
         participation_factors=gamma,
         effective_masses=gamma**2,
-        movable_mass=float(r @ (M @ r)),
+        total_mass=float(model.ground @ mass_r),
         static_flexibility=float(flex),
         static_stiffness=float(1.0 / flex),
         sdof_mode=first,
@@ -185,6 +192,8 @@ def impact_modes(result, n=None):
         frequencies=result.frequencies[keep],
         modal_masses=m,
         modal_stiffnesses=result.angular_frequencies[keep] ** 2 * m,
+        impact_participation=p[keep],
+        ground_factors=result.participation_factors[keep] / p[keep],
         shapes=result.shapes[:, keep] / p[keep],
         flexibility_fraction=frac,
     )
