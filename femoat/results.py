@@ -147,10 +147,11 @@ class RunResult:
                 e = min(e, t.size - 1)
                 seg = slice(s, e + 1)
                 fs = f[seg]
-                pos = np.flatnonzero(fs > 0)
-                last = s + (pos[-1] + 1 if pos.size else 0)
-                last = min(last, e)
                 k = s + int(np.argmax(fs))
+                # the episode ends at separation (δ back to 0, a located event) or earlier where
+                # a tension-free law's force has fallen to zero
+                zero = np.flatnonzero(f[k:e + 1] <= 0.0)
+                last = k + zero[0] if zero.size else e
                 rows.append(dict(
                     side=name,
                     start=float(t[s]),

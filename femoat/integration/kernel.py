@@ -24,7 +24,7 @@ starts (capturing δ̇₀) or ends.
 import numpy as np
 from numba import njit
 
-from femoat.contact.kernels import contact_closure, contact_commit, contact_force
+from femoat.contact.kernels import KELVIN_VOIGT, contact_closure, contact_commit, contact_force
 from femoat.structure.materials.kernels import material_commit, material_trial
 
 # Status codes returned by run_chunk.
@@ -97,8 +97,12 @@ def _solve_dense(A, b, n):
 
 @njit(cache=True)
 def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
-                    c_B, c_gap, c_code, c_P, c_H, c_f, c_d, F, KT, CT, want_tangent):
-    """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked."""
+                    c_B, c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, F, KT, CT, want_tangent):
+    """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked.
+
+    A Kelvin-Voigt contact whose episode is open acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps
+    on at closure), so that the step after a located closure starts from the right force.
+    """
     n = u.size
     for i in range(n):
         s = 0.0
@@ -137,7 +141,10 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
         for i in range(n):
             d += b[i] * u[i]
             dv += b[i] * v[i]
-        f, kf, cf = contact_force(c_code[c], c_P[c], c_H[c], d, dv)
+        dk = d
+        if c_closed[c] and d <= 0.0 and c_code[c] == KELVIN_VOIGT:
+            dk = 1e-300
+        f, kf, cf = contact_force(c_code[c], c_P[c], c_H[c], dk, dv)
         c_f[c] = f
         c_d[c] = d
         if f != 0.0 or kf != 0.0 or cf != 0.0:
@@ -149,6 +156,26 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
                             if b[j] != 0.0:
                                 KT[i, j] += kf * b[i] * b[j]
                                 CT[i, j] += cf * b[i] * b[j]
+
+
+@njit(cache=True)
+def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B, c_gap,
+             c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A, w_b):
+    """Re-establish equilibrium accelerations after a contact event changed the forces.
+
+    A located closure or separation is a discontinuity of the force law; the trapezoidal rule
+    must restart from a = M⁻¹·(p − F) at the event instead of the pre-event acceleration.
+    """
+    n = u.size
+    _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed, c_B, c_gap,
+                    c_code, c_P, c_H, c_closed, c_f, c_d, Fn, w_KT, w_CT, False)
+    for i in range(n):
+        w_b[i] = -r[i] * ag_now - Fn[i]
+        for j in range(n):
+            w_A[i, j] = M[i, j]
+    _solve_dense(w_A, w_b, n)
+    for i in range(n):
+        a[i] = w_b[i]
 
 
 @njit(cache=True)
@@ -197,7 +224,14 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
     since_record = 0
     t_goal = min(t_stop, t_end)
 
+    stalls = 0
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
+        stalls += 1
+        if stalls > 100000:
+            # no step accepted after 100000 attempts: report instead of spinning
+            state_t[0] = t
+            h_state[0] = h
+            return STEP_TOO_SMALL
         if stats[S_NOUT] >= out_t.size:
             state_t[0] = t
             h_state[0] = h
@@ -210,9 +244,10 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             if t_sample - t < hh:
                 hh = t_sample - t
         t1 = t + hh
-        if t_goal - t1 < 1e-12 * max(1.0, t_goal):
+        # land exactly on the goal or a sample when within round-off of it
+        if t_goal - t1 < 1e-9 * hh:
             t1 = t_goal
-        elif k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-12:
+        elif k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-9 * hh:
             t1 = k_next * dt_rec
         hh = t1 - t
 
@@ -220,22 +255,27 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
         for c in range(ncon):
             if c_closed[c]:
                 any_closed = True
-        # --- Newton on the Newmark/HHT step
-        c0 = 1.0 / (beta * hh * hh)
-        c1 = gamma / (beta * hh)
+        # --- Newton on the Newmark/HHT step, in the acceleration a₁ (the displacement form
+        # loses digits to cancellation in (u₁ − u₀ − h·v₀)/(βh²) when steps are tiny)
+        bh2 = beta * hh * hh
+        gh = gamma * hh
         ag1 = ground_accel(ag, dt_rec, t1)
         ag0 = pn_state[0]
         for i in range(n):
-            w_u[i] = u[i] + hh * v[i] + 0.5 * hh * hh * a[i]
+            w_a[i] = a[i]
         converged = False
         it = 0
         while it < maxit:
             it += 1
+            amax = 0.0
             for i in range(n):
-                w_a[i] = c0 * (w_u[i] - u[i] - hh * v[i]) - (0.5 / beta - 1.0) * a[i]
-                w_v[i] = v[i] + hh * ((1.0 - gamma) * a[i] + gamma * w_a[i])
+                w_u[i] = u[i] + hh * v[i] + hh * hh * (0.5 - beta) * a[i] + bh2 * w_a[i]
+                w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
+                if abs(w_a[i]) > amax:
+                    amax = abs(w_a[i])
             _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
-                            c_B, c_gap, c_code, c_P, c_H, w_cf, w_cd, w_F, w_KT, w_CT, True)
+                            c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
+                            True)
             for i in range(n):
                 s = 0.0
                 for j in range(n):
@@ -244,33 +284,70 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 p0 = -r[i] * ag0
                 w_b[i] = -(s + (1.0 + alpha) * (w_F[i] - p1) - alpha * (Fn[i] - p0))
                 for j in range(n):
-                    w_A[i, j] = c0 * M[i, j] + (1.0 + alpha) * (c1 * w_CT[i, j] + w_KT[i, j])
+                    w_A[i, j] = M[i, j] + (1.0 + alpha) * (gh * w_CT[i, j] + bh2 * w_KT[i, j])
             if not _solve_dense(w_A, w_b, n):
                 break
             du = 0.0
+            da = 0.0
             finite = True
             for i in range(n):
-                w_u[i] += w_b[i]
-                q = abs(w_b[i]) / scale_contact[i]
+                w_a[i] += w_b[i]
+                q = bh2 * abs(w_b[i]) / scale_contact[i]
                 if q > du:
                     du = q
-                if not np.isfinite(w_u[i]):
+                if abs(w_b[i]) > da:
+                    da = abs(w_b[i])
+                if not np.isfinite(w_a[i]):
                     finite = False
             if not finite:
                 break
-            if du < ntol:
+            # converged: the displacement correction is below ntol·scale and the acceleration
+            # correction below ntol relative to the accelerations (or 1 in/s² absolute)
+            if du < ntol and da < ntol * 1e2 * (amax + 1.0):
                 converged = True
                 break
         stats[S_NEWTON] += it
         if converged:
-            # final kinematics and forces at the converged displacement
+            # final kinematics and forces at the converged acceleration
             for i in range(n):
-                w_a[i] = c0 * (w_u[i] - u[i] - hh * v[i]) - (0.5 / beta - 1.0) * a[i]
-                w_v[i] = v[i] + hh * ((1.0 - gamma) * a[i] + gamma * w_a[i])
+                w_u[i] = u[i] + hh * v[i] + hh * hh * (0.5 - beta) * a[i] + bh2 * w_a[i]
+                w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
             _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
-                            c_B, c_gap, c_code, c_P, c_H, w_cf, w_cd, w_F, w_KT, w_CT, False)
+                            c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
+                            False)
         if not converged:
             stats[S_REJECT_NEWTON] += 1
+            # A gap closing inside the step can defeat Newton when the law jumps at δ = 0⁺
+            # (Kelvin-Voigt): land just before the closure, or start the episode right here.
+            started = False
+            h_cross = hh
+            for c in range(ncon):
+                if not c_closed[c]:
+                    dd0 = 0.0
+                    for i in range(n):
+                        dd0 += c_B[c, i] * v[i]
+                    if dd0 <= 0.0 or c_d[c] + dd0 * hh <= 0.0:
+                        continue
+                    # the gap closes within this step (straight-line estimate)
+                    if -c_d[c] / dd0 >= hmin and c_d[c] < -gap_tol:
+                        # aim short of the crossing so that the step converges and progresses
+                        h_cross = min(h_cross, 0.9 * (-c_d[c] / dd0))
+                        continue
+                    c_closed[c] = 1
+                    contact_closure(c_H[c], dd0)
+                    if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
+                        out_closed[stats[S_NOUT] - 1, c] = 1
+                    stats[S_EVENTS] += 1
+                    started = True
+            if not started and h_cross < 0.999 * hh:
+                h = h_cross
+                continue
+            if started:
+                _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
+                         c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT,
+                         w_A, w_b)
+                h = min(hh, h_contact)
+                continue
             h = hh * 0.25
             if h < hmin:
                 state_t[0] = t
@@ -295,6 +372,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
 
         # --- contact events inside the step
         theta = 2.0
+        c_min = -1
         event_now = -1
         for c in range(ncon):
             d0, d1 = c_d[c], w_cd[c]
@@ -303,17 +381,19 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             for i in range(n):
                 dd0 += c_B[c, i] * v[i]
                 dd1 += c_B[c, i] * w_v[i]
-            if not c_closed[c] and d1 > gap_tol:
+            if not c_closed[c] and d1 > 0.0:
                 if d0 >= -gap_tol:
                     event_now = c  # already touching at the start of the step
                 else:
                     th = _crossing(d0, dd0, d1, dd1, hh)
                     if th < theta:
                         theta = th
+                        c_min = c
             elif c_closed[c] and d1 < -gap_tol:
                 th = _crossing(d0, dd0, d1, dd1, hh)
                 if th < theta:
                     theta = th
+                    c_min = c
         if event_now >= 0:
             # closure at the current (committed) state: start the episode, redo the step small
             dd0 = 0.0
@@ -321,16 +401,40 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 dd0 += c_B[event_now, i] * v[i]
             c_closed[event_now] = 1
             contact_closure(c_H[event_now], max(dd0, 0.0))
+            if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
+                out_closed[stats[S_NOUT] - 1, event_now] = 1
             stats[S_EVENTS] += 1
+            _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
+                     c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
+                     w_b)
             h = min(hh, h_contact)
             continue
         if theta <= 1.0:
-            h_new = hh * theta
-            if h_new >= hmin and h_new < hh * (1.0 - 1e-12):
+            # shorten by more than the time round-off, or the same step would repeat forever
+            h_new = min(hh * theta, hh - 64.0 * 2.3e-16 * abs(t1))
+            if h_new >= hmin:
                 stats[S_REJECT_ERR] += 1
                 h = h_new
                 continue
-            # the crossing is within the smallest step: take this step as the event step
+            if h_new < hmin:
+                # the crossing is closer than the smallest step: the event happens at the
+                # committed state (the last recorded sample); declare it there and redo the step
+                dd0 = 0.0
+                for i in range(n):
+                    dd0 += c_B[c_min, i] * v[i]
+                if c_closed[c_min]:
+                    c_closed[c_min] = 0
+                else:
+                    c_closed[c_min] = 1
+                    contact_closure(c_H[c_min], max(dd0, 0.0))
+                    h = min(hh, h_contact)
+                if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
+                    out_closed[stats[S_NOUT] - 1, c_min] = c_closed[c_min]
+                stats[S_EVENTS] += 1
+                _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
+                         c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
+                         w_b)
+                continue
 
         # --- accept: energies, commits, contact episode changes, output
         for i in range(n):
@@ -358,7 +462,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             dd1 = 0.0
             for i in range(n):
                 dd1 += c_B[c, i] * w_v[i]
-            if not c_closed[c] and w_cd[c] >= -gap_tol and dd1 > 0.0:
+            if not c_closed[c] and w_cd[c] >= -gap_tol and w_cd[c] <= 0.0 and dd1 > 0.0:
                 c_closed[c] = 1
                 contact_closure(c_H[c], dd1)
                 toggled = True
@@ -374,6 +478,11 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             Fn[i] = w_F[i]
         pn_state[0] = ag1
         t = t1
+        stalls = 0
+        if toggled:
+            _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
+                     c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
+                     w_b)
         stats[S_STEPS] += 1
         # next step size
         grow = 2.0 if err < 1e-12 else min(2.0, max(0.2, 0.9 * err ** (-1.0 / 3.0)))

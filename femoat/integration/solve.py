@@ -109,7 +109,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     Fn = np.zeros(n)
     kn._internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
                        packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
-                       packed.c_code, packed.c_P, c_H, c_f, c_d, Fn, w["KT"], w["CT"], False)
+                       packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False)
     a = np.linalg.solve(packed.M, -packed.r * ag0 - Fn)
     for c in range(ncon):
         if c_d[c] > 0:
@@ -117,6 +117,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
                 f"{c_d[c]:.3g} in); start the base mat inside the gap.")
 
+    e_initial = _initial_energy(packed, u, v)
     cap = 4096
     bufs = _buffers(cap, n, nel, ncon)
     energy = np.zeros(kn.N_ENERGY)
@@ -169,7 +170,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
                    cpu_seconds=cpu, recorded=int(m)),
-        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy),
+        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy, e_initial),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
@@ -215,7 +216,21 @@ def _grow(bufs, cap):
     return out
 
 
-def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy):
+def _initial_energy(packed, u, v):
+    """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
+    from femoat.structure.materials import material_commit, material_recoverable_energy
+
+    e = 0.5 * v @ packed.M @ v + 0.5 * u @ packed.K @ u
+    for k in range(packed.el_code.size):
+        i, j = packed.el_i[k], packed.el_j[k]
+        d = u[i] - (u[j] if j >= 0 else 0.0)
+        s = packed.el_S[k].copy()
+        material_commit(packed.el_code[k], packed.el_P[k], s, d, 0.0)
+        e += material_recoverable_energy(packed.el_code[k], packed.el_P[k], s)
+    return float(e)
+
+
+def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy, e_initial):
     from femoat.contact.kernels import contact_stored_energy
     from femoat.structure.materials import material_recoverable_energy
 
@@ -229,6 +244,7 @@ def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy):
     iso = [e for e, name in enumerate(packed.el_names) if name == "isolator"]
     sto = [e for e, name in enumerate(packed.el_names) if name != "isolator"]
     out = dict(
+        initial=e_initial,
         input=float(energy[kn.E_INPUT]),
         kinetic=float(kinetic),
         recoverable=float(linear_strain + el_rec.sum() + c_rec.sum()),
@@ -239,8 +255,9 @@ def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy):
     )
     accounted = sum(out[k] for k in ("kinetic", "recoverable", "hysteretic", "friction",
                                      "viscous", "contact"))
-    scale = max(abs(out["input"]), abs(accounted), 1e-300)
-    out["residual"] = float(abs(out["input"] - accounted) / scale) if scale > 1e-300 else 0.0
+    supplied = out["initial"] + out["input"]
+    scale = max(abs(supplied), abs(accounted))
+    out["residual"] = float(abs(supplied - accounted) / scale) if scale > 0 else 0.0
     return out
 
 
