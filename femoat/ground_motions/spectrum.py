@@ -21,7 +21,6 @@ peak between samples or in the free vibration after the record ends is not count
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import expm
 
 from femoat.units import G
 
@@ -86,6 +85,8 @@ def _step_matrices(omega, damping, h):
     aug[:, 1, 1] = -2.0 * damping * omega
     aug[:, 1, 2] = -1.0  # u'' = ... - a_g
     aug[:, 2, 3] = 1.0  # a_g' = constant slope over the step
+    from scipy.linalg import expm  # imported here: scipy.linalg costs ~0.3 s at start-up
+
     psi = expm(aug * h)
     phi = psi[:, :2, :2]
     f_slope = psi[:, :2, 3] / h  # response to the slope (a_{n+1} - a_n) / h

@@ -21,11 +21,24 @@ inside a step shortens the step until it ends within gap_tol of δ = 0, where th
 starts (capturing δ̇₀) or ends.
 """
 
+from pathlib import Path
+
 import numpy as np
 from numba import njit
 
-from femoat.contact.kernels import KELVIN_VOIGT, contact_closure, contact_commit, contact_force
-from femoat.structure.materials.kernels import material_commit, material_trial
+from femoat.numba_cache import drop_stale_cache
+
+_PKG = Path(__file__).resolve().parent.parent
+drop_stale_cache(__file__, [_PKG / "contact" / "kernels.py",
+                            *sorted((_PKG / "structure" / "materials").glob("*.py"))])
+
+from femoat.contact.kernels import (  # noqa: E402
+    KELVIN_VOIGT,
+    contact_closure,
+    contact_commit,
+    contact_force,
+)
+from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
 # Status codes returned by run_chunk.
 DONE, STOPPED, BUFFER_FULL, NEWTON_FAILED, STEP_TOO_SMALL = 0, 1, 2, 3, 4
