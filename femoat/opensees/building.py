@@ -1,0 +1,397 @@
+"""An OpenSees twin of a femoat building run, for cross-checks in the tool engineers know.
+
+:func:`opensees_run` writes a :class:`~femoat.structure.pounding.PoundingModel` with SDOF walls
+as the equivalent openseespy model, runs it at a fixed time step and summarises it with the keys
+of :attr:`femoat.results.RunResult.peaks`. :func:`opensees_commands` returns the same model as a
+list of openseespy calls; :func:`write_opensees_script` writes them as a standalone script.
+
+OpenSees model (written once here)
+----------------------------------
+* 1-D, one DOF per node, every displacement relative to the ground (``UniformExcitation``
+  applies −m·a_g to every mass, walls included, as femoat's ``r`` vector does).
+* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; then one node per wall
+  (``_WALL_NODE + 0`` for the first wall of ``model.walls``, ``+ 1`` for the second).
+  A wall node's displacement x is along +x, so femoat's wall coordinate q (positive away from
+  the building) is q = side·x.
+* Elements (all ``zeroLength``, ``-dir 1``; strain = u_j − u_i):
+    - isolator, ground → base: ``Parallel(Elastic W/R, ElasticPP μW/u_y u_y)`` for a constant-μ
+      friction pendulum (its EPP friction spring is ElasticPP exactly); ``Elastic k`` for an
+      elastic isolator; none when ``isolator is None``;
+    - story k, floor k−1 → floor k: ``Elastic k`` / ``Steel01 Fy k0 b`` (Bilinear) /
+      ``Bilin …`` (IMKBilinear, :meth:`~femoat.structure.materials.IMKBilinear.opensees_bilin_args`)
+      in ``Parallel`` with ``Elastic 0 c``, the story dashpot c = β·k0 of
+      :meth:`PoundingModel.pack`;
+    - wall spring, ground → wall: ``Elastic K1 C_imp`` (spring and dashpot);
+    - contact: base → wall for side +1, wall → base for side −1, so that closing the gap makes
+      the strain negative on both sides; the gap material is
+      :func:`~femoat.opensees.single_impact.opensees_contact_material` (compression
+      convention: gap −g0, stress −f in contact).
+* Ground motion: ``Path`` time series of a_g [in/s²] at the record's dt (linear between samples,
+  zero after the last, as femoat). Initial accelerations are set to equilibrium,
+  a0 = M⁻¹(−r·a_g(0) − C·v0), as femoat starts (OpenSees would otherwise start from a0 = 0).
+* Analysis: Newmark average acceleration (γ = 1/2, β = 1/4), Newton, ``NormDispIncr`` test,
+  fixed dt; the step loop runs in Python (one ``analyze(1, dt)`` per step, histories read after
+  each), which costs about 10 % of OpenSees' own time and is counted in ``cpu_seconds``.
+
+Differences from femoat that remain (see :mod:`femoat.opensees.single_impact` for the contact
+materials): OpenSees' ViscoelasticGap pulls in tension (femoat's V cuts it unless
+``allow_tension=True``); Hertzdamp takes δ̇₀ at the end of the first contact step and
+ImpactMaterial carries a first-step offset, both O(dt); a fixed step does not locate gap
+closure or separation, which costs O(dt) in impulse and O(dt²) elsewhere.
+"""
+
+import contextlib
+import math
+import os
+import tempfile
+import time as _time
+
+import numpy as np
+
+from femoat.contact.laws import ContactLaw
+from femoat.opensees.single_impact import _INSTALL_HINT, opensees_contact_material
+from femoat.structure.building import initial_stiffness
+from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+from femoat.structure.pounding import PoundingModel
+from femoat.units import G
+from femoat.walls.sdof import SdofWall
+
+_GROUND, _BASE, _WALL_NODE = 1, 2, 100
+_ISO_ELE, _STORY_ELE, _WALL_ELE, _CONTACT_ELE = 1, 10, 100, 200
+
+
+class OpenSeesFailure(RuntimeError):
+    """OpenSees stopped: Newton did not converge (``kind == "diverged"``) or the state became
+    NaN or infinite (``kind == "nan"``) at ``time`` [s], step ``step``."""
+
+    def __init__(self, message, kind, time, step):
+        super().__init__(message)
+        self.kind, self.time, self.step = kind, time, step
+
+
+def _import_opensees():
+    try:
+        import openseespy.opensees as ops
+    except Exception as exc:  # RuntimeError, not ImportError, when libblas/liblapack are missing
+        raise ImportError(f"{_INSTALL_HINT} ({exc})") from exc
+    return ops
+
+
+def _story_material(mat):
+    """``(type, *args)`` of the OpenSees twin of a story material."""
+    if isinstance(mat, Elastic):
+        return ("Elastic", mat.k)
+    if isinstance(mat, Bilinear):
+        return ("Steel01", mat.Fy, mat.k0, mat.b)
+    if isinstance(mat, IMKBilinear):
+        return ("Bilin", *mat.opensees_bilin_args())
+    raise ValueError(f"stories: {type(mat).__name__} has no OpenSees twin "
+                     "(use Elastic, Bilinear or IMKBilinear).")
+
+
+def _check_model(model):
+    if not isinstance(model, PoundingModel):
+        raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
+    iso = model.building.isolator
+    if isinstance(iso, FrictionPendulum) and iso.mu_fast is not None:
+        raise ValueError(
+            "isolator: a velocity-dependent friction coefficient (mu_fast) has no exact OpenSees "
+            "twin here (ElasticPP friction is constant-μ); set mu_fast=None to cross-check.")
+    for w in model.walls:
+        if not isinstance(w.wall, SdofWall):
+            raise ValueError("walls: the OpenSees twin takes SDOF walls only (SdofWall); reduce "
+                             "a finite-element wall to its first mode to cross-check it.")
+        if not isinstance(w.law, ContactLaw):
+            raise ValueError("walls: each wall needs a ContactLaw.")
+
+
+def opensees_commands(model, motion):
+    """The openseespy calls that build ``model`` under ``motion``: a list of
+    ``(function name, *args)`` tuples, ending with the analysis set-up (no ``analyze``).
+
+    Raises ValueError for what has no OpenSees twin (modal walls, velocity-dependent friction).
+    """
+    _check_model(model)
+    b = model.building
+    cmds = [("wipe",), ("model", "basic", "-ndm", 1, "-ndf", 1),
+            ("node", _GROUND, 0.0), ("fix", _GROUND, 1)]
+    for k, w in enumerate([b.base_weight, *b.floor_weights]):
+        cmds += [("node", _BASE + k, 0.0), ("mass", _BASE + k, w / G)]
+    mat = 1
+    iso = b.isolator
+    if isinstance(iso, FrictionPendulum):
+        cmds += [("uniaxialMaterial", "Elastic", mat, iso.W / iso.R),
+                 ("uniaxialMaterial", "ElasticPP", mat + 1, iso.mu * iso.W / iso.u_y, iso.u_y),
+                 ("uniaxialMaterial", "Parallel", mat + 2, mat, mat + 1),
+                 ("element", "zeroLength", _ISO_ELE, _GROUND, _BASE, "-mat", mat + 2, "-dir", 1)]
+        mat += 3
+    elif isinstance(iso, Elastic):
+        cmds += [("uniaxialMaterial", "Elastic", mat, iso.k),
+                 ("element", "zeroLength", _ISO_ELE, _GROUND, _BASE, "-mat", mat, "-dir", 1)]
+        mat += 1
+    beta = b.story_damping_beta
+    for k, story in enumerate(b.stories):
+        spring = _story_material(story)
+        cmds.append(("uniaxialMaterial", spring[0], mat, *spring[1:]))
+        c = beta * initial_stiffness(story)
+        if c > 0.0:
+            cmds += [("uniaxialMaterial", "Elastic", mat + 1, 0.0, c),
+                     ("uniaxialMaterial", "Parallel", mat + 2, mat, mat + 1)]
+            top = mat + 2
+        else:
+            top = mat
+        cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,
+                     "-mat", top, "-dir", 1))
+        mat = top + 1
+    for i, w in enumerate(model.walls):
+        node = _WALL_NODE + i
+        cmds += [("node", node, 0.0), ("mass", node, w.wall.mass),
+                 ("uniaxialMaterial", "Elastic", mat, w.wall.stiffness, w.wall.damping),
+                 ("element", "zeroLength", _WALL_ELE + i, _GROUND, node, "-mat", mat, "-dir", 1)]
+        contact = opensees_contact_material(w.law, w.gap)
+        ni, nj = (_BASE, node) if w.side > 0 else (node, _BASE)
+        cmds += [("uniaxialMaterial", contact[0], mat + 1, *contact[1:]),
+                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat + 1, "-dir", 1)]
+        mat += 2
+    cmds += [("timeSeries", "Path", 1, "-dt", float(motion.dt), "-values",
+              *[float(x) for x in motion.accel]),
+             ("pattern", "UniformExcitation", 1, 1, "-accel", 1)]
+    return cmds
+
+
+def _analysis_commands(tol, max_iter):
+    return [("constraints", "Plain"), ("numberer", "Plain"), ("system", "BandGeneral"),
+            ("test", "NormDispIncr", tol, max_iter), ("algorithm", "Newton"),
+            ("integrator", "Newmark", 0.5, 0.25), ("analysis", "Transient")]
+
+
+def _initial_state(model, motion, v0):
+    """Node tags, their signs (x_node = sign·u_dof) and the initial velocities and equilibrium
+    accelerations per femoat DOF."""
+    packed = model.pack()
+    n = packed.n
+    nodes = [_BASE + k for k in range(packed.n_struct)] + [_WALL_NODE + i
+                                                           for i in range(len(model.walls))]
+    signs = [1.0] * packed.n_struct + [float(w.side) for w in model.walls]
+    v = np.zeros(n) if v0 is None else np.array(v0, dtype=float)
+    if v.shape != (n,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"v0 must be {n} finite velocities [in/s] ({packed.dof_names}).")
+    ag0 = float(motion.accel[0])
+    a = np.linalg.solve(packed.M, -packed.r * ag0 - packed.C @ v)
+    return packed, nodes, np.array(signs), v, a
+
+
+@contextlib.contextmanager
+def _captured_stderr(sink):
+    """Collect what OpenSees writes to file descriptor 2 (material banners, warnings) into
+    ``sink`` (a list) instead of the terminal."""
+    try:
+        fd = os.dup(2)
+    except OSError:  # no real stderr: nothing to capture
+        yield
+        return
+    with tempfile.TemporaryFile(mode="w+b") as tmp:
+        os.dup2(tmp.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(fd, 2)
+            os.close(fd)
+            tmp.seek(0)
+            sink.append(tmp.read().decode("utf-8", "replace"))
+
+
+def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=50):
+    """Run the OpenSees twin of ``model`` under ``motion`` at the fixed step ``dt``.
+
+    Replaces any model in the openseespy interpreter (``wipe`` before and after).
+
+    Parameters
+    ----------
+    model : PoundingModel
+        Building and SDOF moat walls (constant-μ friction pendulum, Elastic or no isolator).
+    motion : GroundMotion
+        Ground acceleration record.
+    dt : float
+        Fixed time step [s], > 0.
+    duration : float or None
+        Analysis time [s]; default: the record plus 2 s, as :func:`femoat.run.run`.
+    v0 : array or None
+        Initial relative velocities [in/s] per femoat DOF (``model.dof_names()``).
+    tol : float
+        ``NormDispIncr`` tolerance [in] of the Newton iterations.
+    max_iter : int
+        Newton iterations per step before OpenSees gives up (then :class:`OpenSeesFailure`).
+
+    Returns
+    -------
+    dict
+        ``time`` [s] (t = n·dt); ``base_displacement`` [in]; ``floor_displacement`` [in] (one
+        column per floor); ``wall_displacement`` [in] (per wall, away from the building);
+        ``contact_force`` [kip] (compression positive) and ``indentation`` [in] per wall;
+        ``contact_names`` ("pos"/"neg"); ``peaks`` (the keys of RunResult.peaks that apply:
+        impact forces with the same parabolic refinement, impact counts, displacements,
+        indentation, impulse, drifts, accelerations [g], steps, cpu_seconds); ``impacts`` (one
+        dict per episode: side, start, duration, peak_force, max_indentation, impulse);
+        ``energy`` (``input``, ``kinetic`` [kip·in] and per-contact trapezoidal ``contact``
+        work: what each contact took out of the discrete system, < 0 is energy it created);
+        ``cpu_seconds`` (process time of the step loop); ``steps``; ``dt``; ``commands``.
+
+    Raises
+    ------
+    OpenSeesFailure
+        Newton failed at a step, or the state went NaN/inf.
+    """
+    ops = _import_opensees()
+    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt = {dt!r} must be a positive time step [s].")
+    if duration is None:
+        duration = motion.duration + 2.0
+    if not (math.isfinite(duration) and duration > 0):
+        raise ValueError(f"duration = {duration!r} must be a positive time [s].")
+    cmds = opensees_commands(model, motion)
+    packed, nodes, signs, v_init, a_init = _initial_state(model, motion, v0)
+    n_steps = int(math.ceil(duration / dt - 1e-9))
+    ns, nw = packed.n_struct, len(model.walls)
+    log = []
+    try:
+        with _captured_stderr(log):
+            for name, *args in cmds:
+                getattr(ops, name)(*args)
+            for node, sg, vi, ai in zip(nodes, signs, v_init, a_init):
+                if vi != 0.0:
+                    ops.setNodeVel(node, 1, float(sg * vi), "-commit")
+                ops.setNodeAccel(node, 1, float(sg * ai), "-commit")
+            for name, *args in _analysis_commands(tol, max_iter):
+                getattr(ops, name)(*args)
+            hist = _step_loop(ops, model, nodes, n_steps, dt, ns, nw)
+            kinetic = 0.5 * sum(packed.M[i, i] * ops.nodeVel(nd, 1) ** 2
+                                for i, nd in enumerate(nodes))
+    except OpenSeesFailure as exc:
+        tail = " ".join(" ".join(log).split()[-40:])
+        raise OpenSeesFailure(f"{exc} OpenSees said: {tail}", exc.kind, exc.time,
+                              exc.step) from None
+    finally:
+        ops.wipe()
+    return _summarise(hist, model, motion, packed, dt, kinetic, cmds)
+
+
+def _step_loop(ops, model, nodes, n_steps, dt, ns, nw):
+    x = np.zeros((n_steps + 1, len(nodes)))     # node displacements [in]
+    acc = np.zeros((n_steps + 1, ns))            # relative accelerations of base and floors
+    f = np.zeros((n_steps + 1, nw))              # contact forces [kip], compression positive
+    acc[0] = [ops.nodeAccel(nd, 1) for nd in nodes[:ns]]
+    contact_tags = [_CONTACT_ELE + i for i in range(nw)]
+    cpu0 = _time.process_time()
+    for n in range(1, n_steps + 1):
+        if ops.analyze(1, dt) != 0:
+            raise OpenSeesFailure(
+                f"OpenSees did not converge at step {n} (t = {n * dt:.6g} s, dt = {dt:g} s); "
+                "a smaller dt may help.", "diverged", n * dt, n)
+        row = x[n]
+        for k, nd in enumerate(nodes):
+            row[k] = ops.nodeDisp(nd, 1)
+        for k in range(ns):
+            acc[n, k] = ops.nodeAccel(nodes[k], 1)
+        for k, tag in enumerate(contact_tags):
+            f[n, k] = -ops.eleResponse(tag, "material", 1, "stress")[0]
+        if not (np.all(np.isfinite(row)) and np.all(np.isfinite(f[n]))):
+            raise OpenSeesFailure(f"OpenSees returned a non-finite state at step {n} "
+                                  f"(t = {n * dt:.6g} s).", "nan", n * dt, n)
+    cpu = _time.process_time() - cpu0
+    return dict(x=x, acc=acc, f=f, cpu=cpu)
+
+
+def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
+    from femoat.results import _parabolic_peak
+
+    x, acc, f = hist["x"], hist["acc"], hist["f"]
+    ns, nw = packed.n_struct, len(model.walls)
+    t = np.arange(x.shape[0]) * dt
+    base = x[:, 0]
+    walls = x[:, ns:] * np.array([w.side for w in model.walls])[None, :]
+    indent = np.column_stack([w.side * base - w.gap - walls[:, i]
+                              for i, w in enumerate(model.walls)]) if nw else np.zeros((t.size, 0))
+    names = ["pos" if w.side > 0 else "neg" for w in model.walls]
+    impacts = []
+    for c in range(nw):
+        closed = indent[:, c] > 0.0
+        starts = np.flatnonzero(closed & ~np.r_[False, closed[:-1]])
+        for s in starts:
+            e = s
+            while e + 1 < t.size and closed[e + 1]:
+                e += 1
+            seg = slice(max(s - 1, 0), min(e + 2, t.size))  # the open samples either side
+            k = s + int(np.argmax(f[s:e + 1, c]))
+            t_open = t[s] if s == 0 else (
+                t[s - 1] + dt * (-indent[s - 1, c]) / (indent[s, c] - indent[s - 1, c]))
+            impacts.append(dict(
+                side=names[c], start=float(t_open), duration=float((e - s + 1) * dt),
+                peak_force=float(_parabolic_peak(t, f[:, c], k)),
+                max_indentation=float(indent[s:e + 1, c].max()),
+                impulse=float(np.trapezoid(f[seg, c], t[seg]))))
+    impacts.sort(key=lambda r: r["start"])
+    ag = np.interp(t, motion.time, motion.accel, right=0.0)
+    absacc = acc + ag[:, None]
+    drifts = np.diff(x[:, :ns], axis=1)
+    du = np.diff(x, axis=0)
+    masses = np.array([packed.M[i, i] for i in range(packed.n)])
+    # E_in = Σ ½(p_n + p_{n+1})·Δu with p = −m·a_g on every node (relative formulation)
+    e_input = float(-np.sum(0.5 * (ag[:-1] + ag[1:]) * (du @ masses)))
+    e_contact = [float(np.sum(0.5 * (f[1:, c] + f[:-1, c]) * np.diff(indent[:, c])))
+                 for c in range(nw)]
+    peaks = {
+        "peak_impact_force": max((r["peak_force"] for r in impacts), default=0.0),
+        "peak_impact_force_pos": max((r["peak_force"] for r in impacts if r["side"] == "pos"),
+                                     default=0.0),
+        "peak_impact_force_neg": max((r["peak_force"] for r in impacts if r["side"] == "neg"),
+                                     default=0.0),
+        "impacts_pos": sum(r["side"] == "pos" for r in impacts),
+        "impacts_neg": sum(r["side"] == "neg" for r in impacts),
+        "peak_base_displacement": float(np.abs(base).max()),
+        "peak_wall_displacement": float(np.abs(walls).max()) if nw else 0.0,
+        "peak_indentation": float(max(0.0, indent.max())) if nw else 0.0,
+        "peak_impulse": max((r["impulse"] for r in impacts), default=0.0),
+        "peak_drift": [float(d) for d in np.abs(drifts).max(axis=0)],
+        "peak_floor_acceleration": [float(a) for a in np.abs(absacc[:, 1:]).max(axis=0) / G],
+        "peak_base_acceleration": float(np.abs(absacc[:, 0]).max() / G),
+        "cpu_seconds": hist["cpu"],
+        "steps": int(t.size - 1),
+    }
+    return dict(
+        time=t, base_displacement=base, floor_displacement=x[:, 1:ns], wall_displacement=walls,
+        contact_force=f, indentation=indent, contact_names=names, peaks=peaks, impacts=impacts,
+        energy=dict(input=e_input, kinetic=float(kinetic), contact=e_contact),
+        cpu_seconds=hist["cpu"], steps=int(t.size - 1), dt=float(dt), commands=cmds)
+
+
+def write_opensees_script(model, motion, dt, path, duration=None, tol=1e-10, max_iter=50):
+    """Write a standalone openseespy script of ``model`` under ``motion`` (fixed step ``dt``),
+    atomically; it records node displacements and contact forces to ``<path stem>_*.out``."""
+    from femoat.atomic import write_text
+
+    cmds = opensees_commands(model, motion) + _analysis_commands(tol, max_iter)
+    if duration is None:
+        duration = motion.duration + 2.0
+    n_steps = int(math.ceil(duration / dt - 1e-9))
+    packed, nodes, signs, _, a_init = _initial_state(model, motion, None)
+    lines = [f'"""OpenSees twin of a femoat model (units kip, in, s): {motion.name}, '
+             f'dt = {dt:g} s, {n_steps} steps. Written by femoat.opensees.building."""',
+             "import openseespy.opensees as ops", ""]
+    for name, *args in cmds[:-len(_analysis_commands(tol, max_iter))]:
+        lines.append(f"ops.{name}({', '.join(repr(a) for a in args)})")
+    for node, sg, ai in zip(nodes, signs, a_init):
+        lines.append(f"ops.setNodeAccel({node}, 1, {float(sg * ai)!r}, '-commit')")
+    stem = str(path).rsplit(".", 1)[0]
+    lines.append(f"ops.recorder('Node', '-file', {stem + '_disp.out'!r}, '-time', '-node', "
+                 f"{', '.join(str(nd) for nd in nodes)}, '-dof', 1, 'disp')")
+    if model.walls:
+        tags = ", ".join(str(_CONTACT_ELE + i) for i in range(len(model.walls)))
+        lines.append(f"ops.recorder('Element', '-file', {stem + '_contact.out'!r}, '-time', "
+                     f"'-ele', {tags}, 'material', '1', 'stress')")
+    for name, *args in _analysis_commands(tol, max_iter):
+        lines.append(f"ops.{name}({', '.join(repr(a) for a in args)})")
+    lines += [f"status = ops.analyze({n_steps}, {float(dt)!r})",
+              "ops.wipe()", "print('analyze returned', status)", ""]
+    write_text(path, "\n".join(lines))
+    return path
