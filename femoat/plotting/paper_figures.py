@@ -8,7 +8,6 @@ import numpy as np
 
 from femoat.atomic import atomic_path
 from femoat.plotting.style import LAW_STYLE, pyplot
-from femoat.units import G
 
 
 def _walls_laws(runs):
@@ -92,8 +91,8 @@ def plot_impact_forces(runs, path):
     _save(fig, path, plt)
 
 
-def plot_contact_hysteresis(runs, path):
-    """Fig. 6: contact-spring force vs indentation during the impacts, a panel per wall."""
+def _loops_per_wall(runs, path, curves, title, xlabel, ylabel, clip_origin):
+    """A panel per wall with, for every law, the (x, y) loops ``curves(run)`` returns per side."""
     plt = pyplot()
     walls, laws = _walls_laws(runs)
     fig, axes = plt.subplots(1, len(walls), figsize=(6 * len(walls), 4.2),
@@ -101,45 +100,43 @@ def plot_contact_hysteresis(runs, path):
     for col, wall in enumerate(walls):
         ax = axes[0, col]
         for law in laws:
-            r = runs[(wall, law)]
-            for c in range(r.contact_force.shape[1]):
-                d = np.where(r.indentation[:, c] > 0, r.indentation[:, c], np.nan)
+            for c, (x, y) in enumerate(curves(runs[(wall, law)])):
                 kw = dict(LAW_STYLE[law])
                 if c > 0:
                     kw.pop("label")
-                ax.plot(d, r.contact_force[:, c], lw=1.2, **kw)
-        ax.set_title(f"{wall} wall: contact spring")
-        ax.set_xlabel("indentation [in]")
-        ax.set_ylabel("contact force [kip]")
-        ax.set_xlim(left=0)
-        ax.set_ylim(bottom=0)
+                ax.plot(x, y, lw=1.1, **kw)
+        ax.set_title(f"{wall} wall: {title}")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        if clip_origin:
+            ax.set_xlim(left=0)
+            ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     _save(fig, path, plt)
+
+
+def plot_contact_hysteresis(runs, path):
+    """Fig. 6: contact-spring force vs indentation during the impacts, a panel per wall."""
+
+    def curves(r):
+        return [(np.where(r.indentation[:, c] > 0, r.indentation[:, c], np.nan),
+                 r.contact_force[:, c]) for c in range(r.contact_force.shape[1])]
+
+    _loops_per_wall(runs, path, curves, "contact spring", "indentation [in]",
+                    "contact force [kip]", clip_origin=True)
 
 
 def plot_wall_hysteresis(runs, path):
     """Fig. 7: wall (vibrational) spring-dashpot force vs wall displacement, a panel per wall."""
-    plt = pyplot()
-    walls, laws = _walls_laws(runs)
-    fig, axes = plt.subplots(1, len(walls), figsize=(6 * len(walls), 4.2),
-                             constrained_layout=True, squeeze=False)
-    for col, wall in enumerate(walls):
-        ax = axes[0, col]
-        for law in laws:
-            r = runs[(wall, law)]
-            wd, wf = r.wall_displacement(), r.wall_force()
-            for c in range(wd.shape[1]):
-                kw = dict(LAW_STYLE[law])
-                if c > 0:
-                    kw.pop("label")
-                ax.plot(wd[:, c], wf[:, c], lw=1.0, **kw)
-        ax.set_title(f"{wall} wall: wall spring + dashpot")
-        ax.set_xlabel("wall displacement at impact point, away from building [in]")
-        ax.set_ylabel("wall force K1·w + C·ẇ [kip]")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    _save(fig, path, plt)
+
+    def curves(r):
+        wd, wf = r.wall_displacement(), r.wall_force()
+        return [(wd[:, c], wf[:, c]) for c in range(wd.shape[1])]
+
+    _loops_per_wall(runs, path, curves, "wall spring + dashpot",
+                    "wall displacement at impact point, away from building [in]",
+                    "wall force K1·w + C·ẇ [kip]", clip_origin=False)
 
 
 def plot_global_response(runs, path):
