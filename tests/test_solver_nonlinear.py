@@ -1,7 +1,6 @@
 """The building solver on nonlinear problems: friction against an independent ODE solve, one
 free mass into a wall against the precise single-impact solver, failures, HHT-α."""
 
-import math
 
 import numpy as np
 import pytest

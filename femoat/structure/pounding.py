@@ -14,7 +14,6 @@ import numpy as np
 
 from femoat.contact.laws import ContactLaw
 from femoat.structure.building import Building, initial_stiffness
-from femoat.structure.materials import Elastic
 from femoat.units import G
 from femoat.walls.sdof import SdofWall
 
