@@ -91,8 +91,13 @@ class RunResult:
         """Base-mat displacement relative to the ground [in]."""
         return self.displacement[:, 0]
 
+    def _require(self, name):
+        if getattr(self, name).shape[1] == 0:
+            raise ValueError(f"the {name} channel was not recorded: run with it in channels.")
+
     def absolute_acceleration(self):
         """Absolute accelerations of base mat and floors [in/s²] (columns: base, floor1...)."""
+        self._require("acceleration")
         ns = self.meta["n_struct"]
         return self.acceleration[:, :ns] + self.ground_acceleration[:, None]
 
@@ -103,6 +108,8 @@ class RunResult:
 
     def story_shears(self):
         """Story shear: spring force plus parallel dashpot force [kip], one column per story."""
+        self._require("velocity")
+        self._require("element_force")
         names = self.meta["element_names"]
         cols = [i for i, nm in enumerate(names) if nm.startswith("story")]
         if not cols:
@@ -122,6 +129,7 @@ class RunResult:
     def wall_force(self):
         """Force in the wall's spring and dashpot [kip] (Σ over modes of k·q + c·q̇, weighted
         by the impact-point shape), per contact: the 'vibrational spring' of Fig. 7."""
+        self._require("velocity")
         out = np.zeros((self.time.size, len(self.meta["walls"])))
         for c, w in enumerate(self.meta["walls"]):
             for col, phi, k, cc in zip(w["cols"], w["phi"], w["k"], w["c"]):
@@ -168,6 +176,7 @@ class RunResult:
         imp = self.meta["impacts"]
         ns = self.meta["n_struct"]
         wall = self.wall_displacement()
+        acc = self.absolute_acceleration() if self.acceleration.shape[1] else None
         out = {
             "peak_impact_force": max((r["peak_force"] for r in imp), default=0.0),
             "peak_impact_force_pos": max((r["peak_force"] for r in imp if r["side"] == "pos"),
@@ -181,9 +190,9 @@ class RunResult:
             "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
             "peak_impulse": max((r["impulse"] for r in imp), default=0.0),
             "peak_drift": [float(x) for x in np.abs(self.story_drifts()).max(axis=0)],
-            "peak_floor_acceleration": [float(x) for x in
-                                        (np.abs(self.absolute_acceleration()[:, 1:ns]).max(axis=0) / G)],
-            "peak_base_acceleration": float(np.abs(self.absolute_acceleration()[:, 0]).max() / G),
+            "peak_floor_acceleration": [float(x) for x in (np.abs(acc[:, 1:ns]).max(axis=0) / G)]
+            if acc is not None else None,
+            "peak_base_acceleration": float(np.abs(acc[:, 0]).max() / G) if acc is not None else None,
             "energy_residual": self.meta["energy"]["residual"],
             "cpu_seconds": self.meta["stats"]["cpu_seconds"],
             "steps": self.meta["stats"]["steps"],

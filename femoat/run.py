@@ -9,7 +9,7 @@ from femoat.structure.pounding import PoundingModel
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
-        progress=None):
+        progress=None, channels=None):
     """Integrate ``model`` under ``motion`` and return a :class:`~femoat.results.RunResult`.
 
     Parameters
@@ -28,6 +28,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         Initial relative displacements [in] and velocities [in/s] per DOF (``model.dof_names()``).
     progress : callable or None
         progress(t, duration) is called as the run advances.
+    channels : iterable of str or None
+        Histories to record (see :data:`femoat.integration.solve.CHANNELS`); None records all.
+        Decimate the open phase with ``Integrator(record_every=k)``.
     """
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
@@ -37,8 +40,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         duration = motion.duration + extra_time
     integ = integrator or Integrator()
     packed = model.pack()
+    kw = {} if channels is None else dict(channels=tuple(channels))
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress)
+                 progress=progress, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],

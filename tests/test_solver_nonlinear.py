@@ -163,3 +163,23 @@ def test_deteriorating_stories_run_and_dissipate_more():
     assert r_imk.energy["residual"] < 1e-8
     assert r_imk.energy["hysteretic"] > 0
     assert max(r_imk.peaks["peak_drift"]) >= 0.99 * max(r_bil.peaks["peak_drift"])
+
+
+def test_requested_channels_and_decimation_do_not_change_the_answer():
+    # Recording fewer channels or every 10th open-phase step only changes what is stored; contact
+    # steps are always kept, so the impact table and the peaks are identical.
+    from femoat.paper import paper_model, paper_motion
+
+    gm = paper_motion(quick=True)
+    model = paper_model("concrete", "M")
+    full = run(model, gm)
+    lean = run(model, gm, Integrator(record_every=10), channels=("displacement", "contacts"))
+    assert lean.time.size < full.time.size / 2
+    assert lean.velocity.shape[1] == 0 and lean.acceleration.shape[1] == 0
+    assert lean.impacts == full.impacts
+    assert lean.peaks["peak_impact_force"] == full.peaks["peak_impact_force"]
+    assert lean.peaks["peak_floor_acceleration"] is None
+    with pytest.raises(ValueError, match="velocity channel was not recorded"):
+        lean.story_shears()
+    with pytest.raises(ValueError, match="channels"):
+        run(model, gm, channels=("pressure",))

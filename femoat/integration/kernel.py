@@ -527,11 +527,14 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             k = stats[S_NOUT]
             out_t[k] = t
             out_ag[k] = ag1
-            for i in range(n):
+            # a channel whose buffer has no columns was not requested: nothing is written
+            for i in range(out_u.shape[1]):
                 out_u[k, i] = u[i]
+            for i in range(out_v.shape[1]):
                 out_v[k, i] = v[i]
+            for i in range(out_a.shape[1]):
                 out_a[k, i] = a[i]
-            for e in range(nel):
+            for e in range(out_ef.shape[1]):
                 out_ef[k, e] = el_f[e]
                 out_ed[k, e] = el_d[e]
             for c in range(ncon):

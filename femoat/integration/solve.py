@@ -33,8 +33,11 @@ class RawHistory:
     energy: dict
 
 
+CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
+
+
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-          chunks=20, lazy=True):
+          chunks=20, lazy=True, channels=CHANNELS):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -51,6 +54,10 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         Initial relative displacements [in] and velocities [in/s].
     progress : callable or None
         Called as progress(t, duration) after each chunk.
+    channels : iterable of str
+        Which histories to record, among :data:`CHANNELS`; displacements and contacts are always
+        recorded (the impact table and the peaks need them). Unrequested channels are not
+        written at all (their arrays come back with zero columns).
     lazy : bool
         Skip the wall DOFs in the Newton elimination while no contact carries force (exact: the
         walls are then uncoupled linear oscillators). False solves the full system every step
@@ -116,6 +123,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                        packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
                        packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False)
     a = np.linalg.solve(packed.M, -packed.r * ag0 - Fn)
+    a_initial, el_f_initial, el_d_initial = a.copy(), el_f.copy(), el_d.copy()
     for c in range(ncon):
         if c_d[c] > 0:
             raise ValueError(
@@ -123,8 +131,14 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 f"{c_d[c]:.3g} in); start the base mat inside the gap.")
 
     e_initial = _initial_energy(packed, u, v)
+    unknown = set(channels) - set(CHANNELS)
+    if unknown:
+        raise ValueError(f"channels: {sorted(unknown)} unknown; choose from {CHANNELS}.")
+    chan = set(channels) | {"displacement", "contacts"}
+    widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
+                  el=nel if "elements" in chan else 0, c=ncon)
     cap = 4096
-    bufs = _buffers(cap, n, nel, ncon)
+    bufs = _buffers(cap, widths)
     energy = np.zeros(kn.N_ENERGY)
     stats = np.zeros(kn.N_STATS, dtype=np.int64)
     state_t, h_state, pn_state = np.zeros(1), np.array([h_contact if ncon else dt_rec]), np.array([ag0])
@@ -162,11 +176,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     hist = RawHistory(
         t=np.concatenate([t0, bufs["t"][:m]]),
         u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), bufs["u"][:m]]),
-        v=np.vstack([np.array(v0 if v0 is not None else np.zeros(n), float), bufs["v"][:m]]),
-        a=np.vstack([np.linalg.solve(packed.M, -packed.r * ag0 - _f0(packed, u0, v0)), bufs["a"][:m]]),
+        v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
+                     bufs["v"][:m]]),
+        a=np.vstack([a_initial[:widths["a"]], bufs["a"][:m]]),
         ag=np.concatenate([[ag0], bufs["ag"][:m]]),
-        el_force=np.vstack([np.zeros((1, nel)), bufs["ef"][:m]]),
-        el_deformation=np.vstack([np.zeros((1, nel)), bufs["ed"][:m]]),
+        el_force=np.vstack([el_f_initial[:widths["el"]], bufs["ef"][:m]]),
+        el_deformation=np.vstack([el_d_initial[:widths["el"]], bufs["ed"][:m]]),
         contact_force=np.vstack([np.zeros((1, ncon)), bufs["cf"][:m]]),
         indentation=np.vstack([-packed.c_gap[None, :], bufs["cd"][:m]]),
         indentation_rate=np.vstack([np.zeros((1, ncon)), bufs["cv"][:m]]),
@@ -194,35 +209,15 @@ def _uncoupled_size(packed, lazy):
     return ns
 
 
-def _f0(packed, u0, v0):
-    n = packed.n
-    u = np.zeros(n) if u0 is None else np.asarray(u0, float)
-    v = np.zeros(n) if v0 is None else np.asarray(v0, float)
-    return packed.C @ v + packed.K @ u + _el_force_vector(packed, u)
-
-
-def _el_force_vector(packed, u):
-    from femoat.structure.materials import material_trial
-
-    F = np.zeros(packed.n)
-    for e in range(packed.el_code.size):
-        i, j = packed.el_i[e], packed.el_j[e]
-        d = u[i] - (u[j] if j >= 0 else 0.0)
-        f = material_trial(packed.el_code[e], packed.el_P[e], packed.el_S[e], d, 0.0)[0]
-        F[i] += f
-        if j >= 0:
-            F[j] -= f
-    return F
-
-
 _BUF_KEYS = ("t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv", "closed")
 
 
-def _buffers(cap, n, nel, ncon):
-    return dict(t=np.zeros(cap), u=np.zeros((cap, n)), v=np.zeros((cap, n)), a=np.zeros((cap, n)),
-                ag=np.zeros(cap), ef=np.zeros((cap, nel)), ed=np.zeros((cap, nel)),
-                cf=np.zeros((cap, ncon)), cd=np.zeros((cap, ncon)), cv=np.zeros((cap, ncon)),
-                closed=np.zeros((cap, ncon), dtype=np.int8))
+def _buffers(cap, w):
+    return dict(t=np.zeros(cap), u=np.zeros((cap, w["u"])), v=np.zeros((cap, w["v"])),
+                a=np.zeros((cap, w["a"])), ag=np.zeros(cap), ef=np.zeros((cap, w["el"])),
+                ed=np.zeros((cap, w["el"])), cf=np.zeros((cap, w["c"])),
+                cd=np.zeros((cap, w["c"])), cv=np.zeros((cap, w["c"])),
+                closed=np.zeros((cap, w["c"]), dtype=np.int8))
 
 
 def _grow(bufs, cap):
