@@ -1,10 +1,12 @@
-"""A precise single impact: a mass at speed v0 hits a rigid stop or a Masroor SDOF wall.
+"""A precise single impact: a mass at speed v0 hits a rigid stop, a Masroor SDOF wall or a
+modal wall.
 
 This is femoat's reference for one contact episode. The equations of motion
 
     m ẍ = −f(δ, δ̇),      M1 ẅ = f − K1·w − C_imp·ẇ,      δ = x − w,
 
-are integrated with scipy's 8th-order Dormand-Prince method (DOP853) at tight tolerances. Contact
+(for a modal wall of N modes, m_i·q̈_i = φ_i·f − k_i·q_i − c_i·q̇_i and w = Σ φ_i·q_i, with the
+arrays of :func:`femoat.structure.pounding.wall_modes`) are integrated with scipy's 8th-order Dormand-Prince method (DOP853) at tight tolerances. Contact
 starts at t = 0 (gap closure, δ = 0, δ̇ = v0; Hertzdamp captures δ̇₀ = v0 there). The events that
 change a law's regime are located inside the step and the integration is restarted on them:
 
@@ -14,8 +16,13 @@ change a law's regime are located inside the step and the integration is restart
 * δ returning to zero: separation.
 
 Only the first contact episode is simulated. Two extra states integrate the work done on the
-contact spring, ∫f·δ̇ dt, and the energy dissipated in the wall dashpot, ∫C_imp·ẇ² dt, so that the
-energy balance ½mv0² = ½mv² + E_wall + E_contact + E_dashpot is an independent accuracy check.
+contact spring, ∫f·δ̇ dt, and the energy dissipated in the wall dashpots, ∫Σc_i·q̇_i² dt (C_imp·ẇ²
+for the SDOF wall), so that the energy balance ½mv0² = ½mv² + E_wall + E_contact + E_dashpot, with
+E_wall = Σ(½m_i·q̇_i² + ½k_i·q_i²), is an independent accuracy check.
+
+A modal wall whose dashpots make the equations stiff (fastest modal root c_i/m_i or ω_i far beyond
+the contact time scale) is integrated with the implicit Radau IIA method and an analytic Jacobian
+instead of DOP853; the events and the energy states are the same.
 """
 
 import math
@@ -40,19 +47,21 @@ class ImpactResult:
     Attributes
     ----------
     law : str                    contact law letter
-    target : str                 "rigid" or "sdof"
+    target : str                 "rigid", "sdof" or "modal"
     v0 : float                   impact speed [in/s]
     peak_force : float           largest contact force [kip]
     max_indentation : float      largest indentation δ [in]
     contact_duration : float     time from closure to separation [s]
     restitution : float          −(mass velocity at separation)/v0 [-]
     dissipated_energy : float    energy lost in the contact spring, ∫f·δ̇ dt [kip·in]
-    wall_dissipated_energy : float  energy lost in the wall dashpot [kip·in]
+    wall_dissipated_energy : float  energy lost in the wall dashpot(s) [kip·in]
     wall_energy : float          kinetic + strain energy of the wall at separation [kip·in]
-    peak_wall_displacement : float  largest wall displacement during contact [in]
+    peak_wall_displacement : float  largest wall displacement at the impact point during
+                                 contact [in]
     energy_residual : float      |energy in − energy accounted| / energy in [-]
     damping : float or None      damping parameter used (ξ_KV, ξ_J, ξ_h or M's design e)
     time, indentation, indentation_rate, force, wall_displacement : arrays [s, in, in/s, kip, in]
+    modal_displacement : array (n_samples, N) or None  modal coordinates q_i [in] of a modal wall
     """
 
     law: str
@@ -73,6 +82,7 @@ class ImpactResult:
     indentation_rate: np.ndarray = field(repr=False)
     force: np.ndarray = field(repr=False)
     wall_displacement: np.ndarray = field(repr=False)
+    modal_displacement: np.ndarray | None = field(default=None, repr=False)
 
     def summary(self):
         """The scalar results as a JSON-ready dict (stable keys, units in the docstring)."""
@@ -102,8 +112,9 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         The contact law (with its parameters).
     v0 : float
         Impact (approach) speed [in/s], > 0.
-    wall : SdofWall or None
-        The wall behind the contact spring; ``None`` for a rigid stop.
+    wall : SdofWall, ModalWall or None
+        The wall behind the contact spring; ``None`` for a rigid stop. Any object with the
+        modal arrays of :func:`femoat.structure.pounding.wall_modes` is a modal wall.
     mass : float or None
         Impacting mass [kip·s²/in]; defaults to the law's m_eff.
     rtol : float
@@ -118,8 +129,9 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     m = law.params.m_eff if mass is None else mass
     if not (math.isfinite(m) and m > 0):
         raise ValueError(f"mass = {mass!r} must be a positive mass [kip·s²/in].")
-    if wall is not None and not isinstance(wall, SdofWall):
-        raise ValueError("wall must be an SdofWall or None (rigid stop).")
+    modal = wall is not None and not isinstance(wall, SdofWall)
+    if modal:
+        modes = _modal_arrays(wall)
     if not (0 < rtol < 1e-3):
         raise ValueError(f"rtol = {rtol!r} must be in (0, 1e-3).")
 
@@ -127,24 +139,68 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     h = np.zeros(kernels.N_HISTORY)
     kernels.contact_closure(h, float(v0))
     rigid = wall is None
-    K1, M1, C = (0.0, 1.0, 0.0) if rigid else (wall.stiffness, wall.mass, wall.damping)
+    if modal:
+        mm, kk, cc, phi = modes
+        n = mm.size
+    else:
+        K1, M1, C = (0.0, 1.0, 0.0) if rigid else (wall.stiffness, wall.mass, wall.damping)
+        n = 1
+    # State: x, ẋ, the wall coordinates (w or q_1..q_N), their rates, ∫f·δ̇ dt, ∫Σc·q̇² dt.
+    iq, iqd, iec = slice(2, 2 + n), slice(2 + n, 2 + 2 * n), 2 + 2 * n
 
-    def rhs(t, y):
-        x, v, w, wd = y[0], y[1], y[2], y[3]
-        d, dd = x - w, v - wd
-        f = kernels.contact_force(code, p, h, d, dd)[0]
-        if rigid:
-            return (v, -f / m, 0.0, 0.0, f * dd, 0.0)
-        return (v, -f / m, wd, (f - K1 * w - C * wd) / M1, f * dd, C * wd * wd)
+    if modal:
+        def wall_of(y):
+            return phi @ y[iq], phi @ y[iqd]
+
+        def rhs(t, y):
+            q, qd = y[iq], y[iqd]
+            dd = y[1] - phi @ qd
+            f = kernels.contact_force(code, p, h, y[0] - phi @ q, dd)[0]
+            out = np.empty_like(y)
+            out[0], out[1] = y[1], -f / m
+            out[iq] = qd
+            out[iqd] = (phi * f - kk * q - cc * qd) / mm
+            out[iec], out[iec + 1] = f * dd, cc @ (qd * qd)
+            return out
+
+        def jac(t, y):
+            q, qd = y[iq], y[iqd]
+            d, dd = y[0] - phi @ q, y[1] - phi @ qd
+            f, fd, fv = kernels.contact_force(code, p, h, d, dd)
+            J = np.zeros((y.size, y.size))
+            # ∂f/∂(x, ẋ, q, q̇) = (f_δ, f_δ̇, −f_δ·φ, −f_δ̇·φ)
+            df = np.concatenate(([fd, fv], -fd * phi, -fv * phi))
+            J[0, 1] = 1.0
+            J[1, :iec] = -df / m
+            J[iq, iqd] = np.eye(n)
+            J[iqd, :iec] = np.outer(phi / mm, df)
+            J[iqd, iq] -= np.diag(kk / mm)
+            J[iqd, iqd] -= np.diag(cc / mm)
+            ddd = np.concatenate(([0.0, 1.0], np.zeros(n), -phi))  # ∂δ̇/∂(x, ẋ, q, q̇)
+            J[iec, :iec] = df * dd + f * ddd
+            J[iec + 1, iqd] = 2.0 * cc * qd
+            return J
+    else:
+        def wall_of(y):
+            return y[2], y[3]
+
+        def rhs(t, y):
+            x, v, w, wd = y[0], y[1], y[2], y[3]
+            d, dd = x - w, v - wd
+            f = kernels.contact_force(code, p, h, d, dd)[0]
+            if rigid:
+                return (v, -f / m, 0.0, 0.0, f * dd, 0.0)
+            return (v, -f / m, wd, (f - K1 * w - C * wd) / M1, f * dd, C * wd * wd)
 
     def separation(t, y):
-        return y[0] - y[2]
+        return y[0] - wall_of(y)[0]
 
     separation.terminal, separation.direction = True, -1
 
     def raw_force(t, y):
         # The unclipped force of the laws that can pull: zero crossing = separation by force.
-        d, dd = y[0] - y[2], y[1] - y[3]
+        w, wd = wall_of(y)
+        d, dd = y[0] - w, y[1] - wd
         if law.kind == "V" and not law.allow_tension:
             return p[1] * d + p[2] * dd
         if law.kind == "H":
@@ -154,7 +210,7 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     raw_force.terminal, raw_force.direction = True, -1
 
     def turning(t, y):
-        return y[1] - y[3]
+        return y[1] - wall_of(y)[1]
 
     turning.terminal = True
 
@@ -163,18 +219,29 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     t_est = math.pi * math.sqrt(m / k_est)
     d_scale = v0 * t_est
     e_in = 0.5 * m * v0 * v0
-    atol = rtol * np.array([d_scale, v0, d_scale, v0, e_in, e_in]) * 1e-2
-    t_limit = 200.0 * t_est + (0.0 if rigid else 20.0 * wall.period)
+    atol = rtol * np.concatenate([[d_scale, v0], np.full(n, d_scale), np.full(n, v0),
+                                  [e_in, e_in]]) * 1e-2
+    method, options = "DOP853", {}
+    if rigid:
+        t_limit = 200.0 * t_est
+    elif not modal:
+        t_limit = 200.0 * t_est + 20.0 * wall.period
+    else:
+        t_limit = 200.0 * t_est + 20.0 * float(np.max(np.maximum(2 * np.pi * np.sqrt(mm / kk),
+                                                                   cc / kk)))
+        if _is_stiff(mm, kk, cc, t_est):
+            method, options = "Radau", {"jac": jac}
 
-    y = np.array([0.0, float(v0), 0.0, 0.0, 0.0, 0.0])
+    y = np.zeros(4 + 2 * n)
+    y[1] = float(v0)
     t = 0.0
     loading = True
     ts, ys = [np.array([0.0])], [y[:, None]]
     while True:
         turning.direction = -1 if loading else 1
-        sol = solve_ivp(rhs, (t, t_limit), y, method="DOP853", rtol=rtol, atol=atol,
+        sol = solve_ivp(rhs, (t, t_limit), y, method=method, rtol=rtol, atol=atol,
                         events=(separation, raw_force, turning), dense_output=True,
-                        max_step=t_est / 20.0)
+                        max_step=t_est / 20.0, **options)
         if sol.status == -1:
             raise RuntimeError(f"The impact integration failed at t = {t:.3e} s: {sol.message}")
         t_new, y = sol.t[-1], sol.y[:, -1].copy()
@@ -191,12 +258,16 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         if fired[0] or fired[1]:
             break
         # turning point: the bilinear law remembers its largest indentation
-        kernels.contact_commit(h, y[0] - y[2])
+        kernels.contact_commit(h, y[0] - wall_of(y)[0])
         loading = not loading
 
     time = np.concatenate(ts)
     Y = np.concatenate(ys, axis=1)
-    d_hist, dd_hist = Y[0] - Y[2], Y[1] - Y[3]
+    if modal:
+        w_hist, wd_hist = phi @ Y[iq], phi @ Y[iqd]
+    else:
+        w_hist, wd_hist = Y[2], Y[3]
+    d_hist, dd_hist = Y[0] - w_hist, Y[1] - wd_hist
     # Force history with the history variables valid at each sample (δ_m grows monotonically,
     # so re-evaluating with the running maximum reproduces the committed history).
     dmax_run = np.maximum.accumulate(np.maximum(d_hist, 0.0))
@@ -206,12 +277,17 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         hh[1] = dmax_run[i]
         force[i] = kernels.contact_force(code, p, hh, d_hist[i], dd_hist[i])[0]
 
-    x_end, v_end, w_end, wd_end, e_contact, e_dashpot = y
-    wall_energy = 0.0 if rigid else 0.5 * M1 * wd_end**2 + 0.5 * K1 * w_end**2
+    v_end, e_contact, e_dashpot = y[1], y[iec], y[iec + 1]
+    if modal:
+        q_end, qd_end = y[iq], y[iqd]
+        wall_energy = float(0.5 * mm @ qd_end**2 + 0.5 * kk @ q_end**2)
+    else:
+        w_end, wd_end = y[2], y[3]
+        wall_energy = 0.0 if rigid else 0.5 * M1 * wd_end**2 + 0.5 * K1 * w_end**2
     e_out = 0.5 * m * v_end**2 + wall_energy + e_contact + e_dashpot
     return ImpactResult(
         law=law.kind,
-        target="rigid" if rigid else "sdof",
+        target="rigid" if rigid else ("modal" if modal else "sdof"),
         v0=float(v0),
         peak_force=float(force.max()),
         max_indentation=float(d_hist.max()),
@@ -220,12 +296,47 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         dissipated_energy=float(e_contact),
         wall_dissipated_energy=float(e_dashpot),
         wall_energy=float(wall_energy),
-        peak_wall_displacement=float(Y[2].max()),
+        peak_wall_displacement=float(w_hist.max()),
         energy_residual=float(abs(e_in - e_out) / e_in),
         damping=law.damping_parameter(),
         time=time,
         indentation=d_hist,
         indentation_rate=dd_hist,
         force=force,
-        wall_displacement=Y[2],
+        wall_displacement=w_hist,
+        modal_displacement=Y[iq].T if modal else None,
     )
+
+
+STIFFNESS_RATIO = 100.0
+"""A modal wall is integrated with Radau when its fastest decaying root exceeds this multiple
+of the fastest oscillation (the contact's π/t_est or an underdamped mode's ω)."""
+
+
+def _is_stiff(mm, kk, cc, t_est):
+    """Do overdamped modes make the wall equations stiff on the contact time scale?"""
+    omega2 = kk / mm
+    half = cc / (2.0 * mm)
+    over = half * half > omega2
+    fast = np.where(over, half + np.sqrt(np.maximum(half * half - omega2, 0.0)), 0.0)
+    reference = max(math.pi / t_est, float(np.max(np.sqrt(omega2[~over]), initial=0.0)))
+    return float(fast.max()) > STIFFNESS_RATIO * reference
+
+
+def _modal_arrays(wall):
+    """(m, k, c, φ) of a modal wall, checked; ValueError naming the problem otherwise."""
+    from femoat.structure.pounding import wall_modes
+
+    try:
+        mm, kk, cc, phi, _ = wall_modes(wall)
+    except ValueError:
+        raise ValueError("wall must be an SdofWall, a ModalWall (femoat.walls.ModalWall) or None "
+                         "(rigid stop).") from None
+    n = mm.size
+    if n == 0 or any(a.shape != (n,) for a in (kk, cc, phi)):
+        raise ValueError("wall: modal_masses, modal_stiffnesses, modal_dampings and impact_shape "
+                         "must be 1-D arrays of the same length (one value per mode).")
+    if not (np.all(mm > 0) and np.all(kk > 0) and np.all(cc >= 0) and np.all(np.isfinite(phi))):
+        raise ValueError("wall: modal masses [kip·s²/in] and stiffnesses [kip/in] must be > 0 "
+                         "and modal dampings [kip·s/in] >= 0.")
+    return mm, kk, cc, phi
