@@ -2,6 +2,8 @@
 
 from pathlib import Path
 
+from conftest import SHARED
+
 import numpy as np
 import pytest
 
@@ -13,7 +15,7 @@ from femoat.ground_motions import (
     fema_p695_records,
 )
 
-DATA = Path("/work/shared/ground_motions")
+DATA = SHARED / "ground_motions"
 
 
 def test_listing_sizes_and_ids():

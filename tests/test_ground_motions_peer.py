@@ -3,12 +3,14 @@
 import re
 from pathlib import Path
 
+from conftest import SHARED
+
 import numpy as np
 import pytest
 
 from femoat.ground_motions import RecordFormatError, read_at2, read_text
 
-DATA = Path("/work/shared/ground_motions")
+DATA = SHARED / "ground_motions"
 AT2_FILES = sorted((DATA / "peer").glob("*.AT2"))
 
 # PGA [g] and its time [s], from the table in /work/shared/ground_motions/peer/README.md
