@@ -32,8 +32,8 @@ def case(wall, law_kind, weight, v0, model=None, modes=None):
     from femoat.impact import simulate_impact
     from femoat.units import G
     from femoat.walls import ModalWall, SdofWall, wall_preset
-    from femoat.walls.modal import contact_time
     from femoat.walls.fe.transient import fe_impact, impact_errors
+    from femoat.walls.modal import contact_time
 
     law = make_law(law_kind, wall_preset(wall).contact)
     mass = weight / G

@@ -156,7 +156,9 @@ class ModalWall:
             raise ValueError(f"n = {n!r} must be an integer in [1, {self.n_modes}] (this wall's "
                              "modes)")
         n = int(n)
-        cut = lambda a: None if a is None else a[..., :n]  # noqa: E731
+        def cut(a):
+            return None if a is None else a[..., :n]
+
         return replace(self, modal_masses=self.modal_masses[:n],
                        modal_stiffnesses=self.modal_stiffnesses[:n],
                        modal_dampings=self.modal_dampings[:n], impact_shape=self.impact_shape[:n],
