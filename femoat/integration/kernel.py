@@ -110,23 +110,31 @@ def _solve_dense(A, b, n):
 
 @njit(cache=True)
 def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
-                    c_B, c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, F, KT, CT, want_tangent):
+                    c_B, c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, F, KT, CT, want_tangent,
+                    nd):
     """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked.
 
+    Rows and columns from ``nd`` on are treated as diagonal (uncoupled wall modes while no
+    contact carries force); ``nd = n`` is the general dense case.
     A Kelvin-Voigt contact whose episode is open acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps
     on at closure), so that the step after a located closure starts from the right force.
     """
     n = u.size
-    for i in range(n):
+    for i in range(nd):
         s = 0.0
-        for j in range(n):
+        for j in range(nd):
             s += C[i, j] * v[j] + K[i, j] * u[j]
         F[i] = s
+    for i in range(nd, n):
+        F[i] = C[i, i] * v[i] + K[i, i] * u[i]
     if want_tangent:
-        for i in range(n):
-            for j in range(n):
+        for i in range(nd):
+            for j in range(nd):
                 KT[i, j] = K[i, j]
                 CT[i, j] = C[i, j]
+        for i in range(nd, n):
+            KT[i, i] = K[i, i]
+            CT[i, i] = C[i, i]
     for e in range(el_code.size):
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -181,7 +189,7 @@ def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c
     """
     n = u.size
     _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed, c_B, c_gap,
-                    c_code, c_P, c_H, c_closed, c_f, c_d, Fn, w_KT, w_CT, False)
+                    c_code, c_P, c_H, c_closed, c_f, c_d, Fn, w_KT, w_CT, False, n)
     for i in range(n):
         w_b[i] = -r[i] * ag_now - Fn[i]
         for j in range(n):
@@ -282,6 +290,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             w_a[i] = a[i]
         converged = False
         it = 0
+        nd = n
         while it < maxit:
             it += 1
             amax = 0.0
@@ -290,30 +299,36 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
                 if abs(w_a[i]) > amax:
                     amax = abs(w_a[i])
+            # lazy wall work: a dense block only over the building while no contact can act
+            nd = n
+            if n_coupled < n and not any_closed:
+                nd = n_coupled
+                for c in range(ncon):
+                    d = -c_gap[c]
+                    for i in range(n):
+                        d += c_B[c, i] * w_u[i]
+                    if d > 0.0:
+                        nd = n
             _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
                             c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
-                            True)
+                            True, nd)
             for i in range(n):
-                s = 0.0
-                for j in range(n):
-                    s += M[i, j] * w_a[j]
                 p1 = -r[i] * ag1
                 p0 = -r[i] * ag0
+                if i < nd:
+                    s = 0.0
+                    for j in range(nd):
+                        s += M[i, j] * w_a[j]
+                    for j in range(nd):
+                        w_A[i, j] = M[i, j] + (1.0 + alpha) * (gh * w_CT[i, j] + bh2 * w_KT[i, j])
+                else:
+                    s = M[i, i] * w_a[i]
+                    w_A[i, i] = M[i, i] + (1.0 + alpha) * (gh * w_CT[i, i] + bh2 * w_KT[i, i])
                 w_b[i] = -(s + (1.0 + alpha) * (w_F[i] - p1) - alpha * (Fn[i] - p0))
-                for j in range(n):
-                    w_A[i, j] = M[i, j] + (1.0 + alpha) * (gh * w_CT[i, j] + bh2 * w_KT[i, j])
-            coupled = False
-            for c in range(ncon):
-                if w_cf[c] != 0.0 or c_closed[c]:
-                    coupled = True
-            if coupled or n_coupled >= n:
-                if not _solve_dense(w_A, w_b, n):
-                    break
-            else:
-                if not _solve_dense(w_A, w_b, n_coupled):
-                    break
-                for i in range(n_coupled, n):
-                    w_b[i] /= w_A[i, i]
+            if not _solve_dense(w_A, w_b, nd):
+                break
+            for i in range(nd, n):
+                w_b[i] /= w_A[i, i]
             du = 0.0
             da = 0.0
             finite = True
@@ -341,7 +356,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
             _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
                             c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
-                            False)
+                            False, nd)
         if not converged:
             stats[S_REJECT_NEWTON] += 1
             # A gap closing inside the step can defeat Newton when the law jumps at δ = 0⁺

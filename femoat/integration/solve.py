@@ -121,7 +121,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     Fn = np.zeros(n)
     kn._internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
                        packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
-                       packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False)
+                       packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False,
+                       n)
     a = np.linalg.solve(packed.M, -packed.r * ag0 - Fn)
     a_initial, el_f_initial, el_d_initial = a.copy(), el_f.copy(), el_d.copy()
     for c in range(ncon):
