@@ -2,6 +2,7 @@
 side (needs the ``verify`` extra: openseespy)."""
 
 import json
+import sys
 from pathlib import Path
 
 # peak-summary keys printed side by side, with units
@@ -45,6 +46,13 @@ def run(args):
     from femoat.run import run as run_model
     from femoat.scenario import load_scenario
 
+    try:
+        import openseespy.opensees  # noqa: F401
+    except Exception as exc:  # RuntimeError, not ImportError, when libblas3/liblapack3 are missing
+        print(f"femoat opensees: error: openseespy cannot be imported ({exc}); install it with "
+              "pip install femoat[verify] (Debian/Ubuntu also need: apt-get install libblas3 "
+              "liblapack3).", file=sys.stderr)
+        return 2
     sc = load_scenario(args.scenario)
     duration = sc.motion.duration + sc.extra_time
     if args.script is not None:
