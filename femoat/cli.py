@@ -5,7 +5,7 @@ import importlib
 import sys
 
 # Subcommand modules, each with ``add_parser(subparsers)`` and ``run(args) -> int``.
-COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "opensees"]
+COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees"]
 
 
 def build_parser():
