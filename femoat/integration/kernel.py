@@ -116,8 +116,9 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
 
     Rows and columns from ``nd`` on are treated as diagonal (uncoupled wall modes while no
     contact carries force); ``nd = n`` is the general dense case.
-    A Kelvin-Voigt contact whose episode is open acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps
-    on at closure), so that the step after a located closure starts from the right force.
+    Contacts act only while their episode is open (between a located closure and the located
+    separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
+    at closure), so that the step after a located closure starts from the right force.
     """
     n = u.size
     for i in range(nd):
@@ -162,12 +163,17 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
         for i in range(n):
             d += b[i] * u[i]
             dv += b[i] * v[i]
+        c_d[c] = d
+        if not c_closed[c]:
+            # no episode open: no force (a trial step that closes the gap is shortened to the
+            # located closure; a gap that has just opened within gap_tol carries nothing)
+            c_f[c] = 0.0
+            continue
         dk = d
-        if c_closed[c] and d <= 0.0 and c_code[c] == KELVIN_VOIGT:
+        if d <= 0.0 and c_code[c] == KELVIN_VOIGT:
             dk = 1e-300
         f, kf, cf = contact_force(c_code[c], c_P[c], c_H[c], dk, dv)
         c_f[c] = f
-        c_d[c] = d
         if f != 0.0 or kf != 0.0 or cf != 0.0:
             for i in range(n):
                 if b[i] != 0.0:
@@ -201,22 +207,33 @@ def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c
 
 @njit(cache=True)
 def _crossing(d0, dd0, d1, dd1, h):
-    """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero."""
-    th = d0 / (d0 - d1) if d0 != d1 else 0.5
-    for _ in range(12):
+    """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero.
+
+    Safeguarded Newton on the bracket [0, 1] (the endpoints have opposite signs); without a sign
+    change the crossing is taken at the start of the step (θ = 0).
+    """
+    if d0 == 0.0 or d0 * d1 > 0.0:
+        return 0.0
+    lo, hi = 0.0, 1.0
+    th = d0 / (d0 - d1)
+    for _ in range(100):
         t2 = th * th
         t3 = t2 * th
         p = (2 * t3 - 3 * t2 + 1) * d0 + (t3 - 2 * t2 + th) * h * dd0 \
             + (-2 * t3 + 3 * t2) * d1 + (t3 - t2) * h * dd1
         dp = (6 * t2 - 6 * th) * d0 + (3 * t2 - 4 * th + 1) * h * dd0 \
             + (-6 * t2 + 6 * th) * d1 + (3 * t2 - 2 * th) * h * dd1
-        if dp == 0.0:
-            break
-        step = p / dp
-        th_new = min(1.0, max(0.0, th - step))
-        if abs(th_new - th) < 1e-14:
-            th = th_new
-            break
+        if p == 0.0:
+            return th
+        if (p > 0.0) == (d0 > 0.0):
+            lo = th
+        else:
+            hi = th
+        th_new = th - p / dp if dp != 0.0 else 0.5 * (lo + hi)
+        if not (lo < th_new < hi):
+            th_new = 0.5 * (lo + hi)
+        if hi - lo < 1e-15 or abs(th_new - th) < 1e-16:
+            return th_new
         th = th_new
     return th
 
@@ -241,6 +258,9 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
     # uncoupled from the building: dense elimination on the first n_coupled DOFs only, one
     # division per wall mode.
     n_coupled = iopt[I_N_COUPLED]
+    # After a closure the force law is not smooth (Kelvin-Voigt jumps, Jankowski rises as
+    # δ^(1/4)): restart small and let the controller grow the step (at most ×2 per step).
+    h_start = 1e-3 * h_contact
     nel, ncon = el_code.size, c_code.size
     err_coef = abs(beta - 1.0 / 6.0)
     n_samples = ag.size
@@ -388,7 +408,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                          c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT,
                          w_A, w_b)
-                h = min(hh, h_contact)
+                h = min(hh, h_start)
                 continue
             h = hh * 0.25
             if h < hmin:
@@ -449,7 +469,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                      c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
                      w_b)
-            h = min(hh, h_contact)
+            h = min(hh, h_start)
             continue
         if theta <= 1.0:
             # shorten by more than the time round-off, or the same step would repeat forever
@@ -469,7 +489,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 else:
                     c_closed[c_min] = 1
                     contact_closure(c_H[c_min], max(dd0, 0.0))
-                    h = min(hh, h_contact)
+                    h = min(hh, h_start)
                 if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
                     out_closed[stats[S_NOUT] - 1, c_min] = c_closed[c_min]
                 stats[S_EVENTS] += 1
@@ -534,7 +554,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             if c_closed[c]:
                 now_closed = True
         if toggled and now_closed:
-            h = min(h, h_contact)
+            h = min(h, h_start)
         # output
         since_record += 1
         if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:

@@ -191,7 +191,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
                    cpu_seconds=cpu, recorded=int(m)),
-        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy, e_initial),
+        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
@@ -244,7 +244,7 @@ def _initial_energy(packed, u, v):
     return float(e)
 
 
-def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy, e_initial):
+def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
     from femoat.contact.kernels import contact_stored_energy
     from femoat.structure.materials import material_recoverable_energy
 
@@ -253,7 +253,7 @@ def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, energy, e_initial):
     el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])
                        for e in range(packed.el_code.size)])
     c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
-                      for c in range(packed.c_code.size)])
+                      if c_closed[c] else 0.0 for c in range(packed.c_code.size)])
     el_diss = el_W - el_rec
     iso = [e for e, name in enumerate(packed.el_names) if name == "isolator"]
     sto = [e for e, name in enumerate(packed.el_names) if name != "isolator"]
