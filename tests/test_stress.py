@@ -24,8 +24,8 @@ Criteria, asserted by :func:`_check_run` and :func:`_check_impact`:
   (measured: up to 1.7 × the supplied 3e-13 kip·in for a Hertzdamp graze at rtol = 1e-4,
   none at rtol = 1e-8), while the absolute errors stay below n_events·½·k_eff·(rtol·δ_me)².
 
-Known solver failures (SolverError on benign cases, reproduced in the helper's report) are
-marked ``xfail(strict=True)`` so that a fix shows up as XPASS.
+Known solver failures (reproduced in the helper's report) are marked ``xfail(strict=True)`` so
+that a fix shows up as XPASS.
 """
 
 import math
@@ -182,14 +182,6 @@ def _free_mass(law, v0, wall, gap=None, integrator=None, mass=None):
     return run(model, still, integrator or Integrator(), duration=duration, v0=[v0, 0.0])
 
 
-# kh*100 with V: the gap re-closes at 6e-4 in/s while the wall creeps back; the contact-event
-# root finder returns θ = 1 (no root) and the step is shortened by 64 ulps per retry until the
-# stall guard stops the run (see the report: "_crossing returns θ = 1").
-_XFAIL_CROSSING = pytest.mark.xfail(strict=True, raises=SolverError,
-                                    reason="solver bug: _crossing returns theta = 1 (no root), "
-                                    "the step stalls; SolverError on a benign case")
-
-
 def _building_case(preset, overrides, v0, kind, rtol=1e-4):
     params = _params(preset, overrides)
     wall = wall_preset(preset).wall
@@ -243,13 +235,26 @@ def _pushed(law, wall, push_g, gap, duration, integrator=None, mass=None):
     return run(model, push, integrator or Integrator(), duration=duration)
 
 
-@pytest.mark.parametrize("kind", list(LAWS))
+_XFAIL_RESTING = pytest.mark.xfail(
+    strict=True, reason="solver regression (e977716): a contact resting at an indentation below "
+    "gap_tol opens and closes at every step (millions of events, ~30 s of CPU per second)")
+
+
+@pytest.mark.parametrize("kind", [pytest.param(k, marks=_XFAIL_RESTING if k in "EVM" else ())
+                                  for k in LAWS])
 def test_grazing_closure_under_a_tiny_push(kind):
+    # The mass closes the gap at 3e-5 in/s, bounces a few times and comes to rest on the wall
+    # at the static indentation m·a/k_eff = 2.7e-10 in, below the event tolerance
+    # gap_tol = 1e-3·rtol·δ_me = 2.5e-9 in.
     law = make_law(kind, wall_preset("concrete").contact)
-    res = _pushed(law, wall_preset("concrete").wall, 1e-6, 1e-6, 2.0)
+    res = _pushed(law, wall_preset("concrete").wall, 1e-6, 1e-6, 1.0)
     _check_run(res, law, 1e-4)
     assert res.peaks["impacts_pos"] >= 1
     assert res.impacts[0]["approach_velocity"] < 1e-4  # [in/s]: a grazing closure
+    # Resting on the wall must not make the solver open and close the episode at every step
+    # (measured before e977716: 17 impacts, 11k steps over 2 s; after it, 7.7 million events,
+    # 3.9 million steps and ~25 s of CPU per simulated second for E, V and M).
+    assert res.meta["stats"]["events"] < 1000
 
 
 def _turning(law, wall, eta, gap=1.0):
