@@ -206,6 +206,14 @@ def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c
 
 
 @njit(cache=True)
+def _first_contact_step(v_close, h_start, h_contact, gap_tol):
+    """Step after a closure: small (h_start) for a real impact, whose force law may rise
+    steeply from δ = 0; the ordinary contact step for a grazing closure that would not even
+    indent gap_tol in h_start (a body settling on the wall must not restart tiny every time)."""
+    return h_start if v_close * h_start > gap_tol else h_contact
+
+
+@njit(cache=True)
 def _crossing(d0, dd0, d1, dd1, h):
     """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero.
 
@@ -382,6 +390,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             # A gap closing inside the step can defeat Newton when the law jumps at δ = 0⁺
             # (Kelvin-Voigt): land just before the closure, or start the episode right here.
             started = False
+            v_close = 0.0
             h_cross = hh
             for c in range(ncon):
                 if not c_closed[c]:
@@ -401,6 +410,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                         out_closed[stats[S_NOUT] - 1, c] = 1
                     stats[S_EVENTS] += 1
                     started = True
+                    v_close = max(v_close, dd0)
             if not started and h_cross < 0.999 * hh:
                 h = h_cross
                 continue
@@ -408,7 +418,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                          c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT,
                          w_A, w_b)
-                h = min(hh, h_start)
+                h = min(hh, _first_contact_step(v_close, h_start, h_contact, gap_tol))
                 continue
             h = hh * 0.25
             if h < hmin:
@@ -469,7 +479,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                      c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
                      w_b)
-            h = min(hh, h_start)
+            h = min(hh, _first_contact_step(dd0, h_start, h_contact, gap_tol))
             continue
         if theta <= 1.0:
             # shorten by more than the time round-off, or the same step would repeat forever
@@ -489,7 +499,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 else:
                     c_closed[c_min] = 1
                     contact_closure(c_H[c_min], max(dd0, 0.0))
-                    h = min(hh, h_start)
+                    h = min(hh, _first_contact_step(dd0, h_start, h_contact, gap_tol))
                 if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
                     out_closed[stats[S_NOUT] - 1, c_min] = c_closed[c_min]
                 stats[S_EVENTS] += 1
@@ -516,6 +526,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             el_f[e] = w_ef[e]
             el_d[e] = w_ed[e]
         toggled = False
+        v_close = 0.0
         for c in range(ncon):
             c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
             contact_commit(c_H[c], w_cd[c])
@@ -527,6 +538,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             if not c_closed[c] and w_cd[c] >= -gap_tol and w_cd[c] <= 0.0 and dd1 > 0.0:
                 c_closed[c] = 1
                 contact_closure(c_H[c], dd1)
+                v_close = max(v_close, dd1)
                 toggled = True
                 stats[S_EVENTS] += 1
             elif c_closed[c] and w_cd[c] <= gap_tol and dd1 < 0.0:
@@ -554,7 +566,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             if c_closed[c]:
                 now_closed = True
         if toggled and now_closed:
-            h = min(h, h_start)
+            h = min(h, _first_contact_step(v_close, h_start, h_contact, gap_tol))
         # output
         since_record += 1
         if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:
