@@ -236,8 +236,9 @@ def _pushed(law, wall, push_g, gap, duration, integrator=None, mass=None):
 
 
 _XFAIL_RESTING = pytest.mark.xfail(
-    strict=True, reason="solver regression (e977716): a contact resting at an indentation below "
-    "gap_tol opens and closes at every step (millions of events, ~30 s of CPU per second)")
+    strict=True, reason="a contact resting at an indentation below gap_tol opens and closes at "
+    "every step: 7.7 million events per simulated second after e977716, still 8-11 thousand "
+    "(one per step, 0.04-0.5 s of CPU) after d84674d")
 
 
 @pytest.mark.parametrize("kind", [pytest.param(k, marks=_XFAIL_RESTING if k in "EVM" else ())
@@ -252,8 +253,9 @@ def test_grazing_closure_under_a_tiny_push(kind):
     assert res.peaks["impacts_pos"] >= 1
     assert res.impacts[0]["approach_velocity"] < 1e-4  # [in/s]: a grazing closure
     # Resting on the wall must not make the solver open and close the episode at every step
-    # (measured before e977716: 17 impacts, 11k steps over 2 s; after it, 7.7 million events,
-    # 3.9 million steps and ~25 s of CPU per simulated second for E, V and M).
+    # (measured before e977716: 17 impacts, 11k steps over 2 s; after e977716, 7.7 million
+    # events and ~25 s of CPU per simulated second for E, V and M; after d84674d, 8-11 thousand
+    # events, one per step, J and H 5-10).
     assert res.meta["stats"]["events"] < 1000
 
 
