@@ -183,3 +183,16 @@ def test_requested_channels_and_decimation_do_not_change_the_answer():
         lean.story_shears()
     with pytest.raises(ValueError, match="channels"):
         run(model, gm, channels=("pressure",))
+
+
+def test_closure_on_a_chunk_boundary_does_not_stall():
+    # A 10 kip base mat at 0.05 in/s closes a 0.01 in gap at exactly t = 0.2 s, which is also a
+    # boundary of the solver's progress chunks (1 s / 20 · 4); snapping the step onto that
+    # boundary once undid the event shortening and repeated the step until the stall guard.
+    preset = wall_preset("concrete")
+    model = PoundingModel(Building(base_weight=10.0, floor_weights=(), stories=(),
+                                   isolator=None),
+                          (MoatWall(make_law("H", preset.contact), preset.wall, 0.01, 1),))
+    res = run(model, GroundMotion(np.zeros(2), 1.0), duration=1.0, v0=[0.05, 0.0])
+    assert res.impacts[0]["start"] == pytest.approx(0.2, abs=1e-12)
+    assert res.energy["residual"] < 1e-10

@@ -278,6 +278,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
     t_goal = min(t_stop, t_end)
 
     stalls = 0
+    shortened = False
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
         stalls += 1
         if stalls > 100000:
@@ -298,9 +299,10 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 hh = t_sample - t
         t1 = t + hh
         # land exactly on the goal or a sample when within round-off of it
-        if t_goal - t1 < 1e-9 * hh:
+        # (not after an event shortening, which the snap would undo)
+        if not shortened and t_goal - t1 < 1e-9 * hh:
             t1 = t_goal
-        elif k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-9 * hh:
+        elif not shortened and k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-9 * hh:
             t1 = k_next * dt_rec
         hh = t1 - t
 
@@ -487,6 +489,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
             if h_new >= hmin:
                 stats[S_REJECT_ERR] += 1
                 h = h_new
+                shortened = True
                 continue
             if h_new < hmin:
                 # the crossing is closer than the smallest step: the event happens at the
@@ -553,6 +556,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
         pn_state[0] = ag1
         t = t1
         stalls = 0
+        shortened = False
         if toggled:
             _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                      c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
