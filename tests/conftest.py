@@ -10,3 +10,33 @@ from pathlib import Path  # noqa: E402
 SHARED = Path(__file__).resolve().parents[2] / "shared"
 if not SHARED.is_dir():
     SHARED = Path("/work/shared")
+
+
+# ---- off-screen rendering in a subprocess (a missing OpenGL backend can crash VTK outright) --
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+
+import pytest  # noqa: E402
+
+_ROOT = Path(__file__).resolve().parents[1]
+RENDER_ENV = {**os.environ, "VTK_DEFAULT_OPENGL_WINDOW": "vtkEGLRenderWindow",
+              "PYTHONPATH": os.pathsep.join([str(_ROOT), os.environ.get("PYTHONPATH", "")])}
+_PROBE = ("import pyvista as pv; p = pv.Plotter(off_screen=True, window_size=(64, 64)); "
+          "p.add_mesh(pv.Sphere()); p.screenshot({path!r}); p.close()")
+
+
+def run_python(code, cwd):
+    """Run ``code`` in a fresh Python with the off-screen render environment."""
+    return subprocess.run([sys.executable, "-c", code], cwd=cwd, env=RENDER_ENV,
+                          capture_output=True, text=True, timeout=300, check=False)
+
+
+@pytest.fixture(scope="session")
+def render_backend(tmp_path_factory):
+    """Skip when, and only when, plain pyvista cannot render a sphere off-screen in a fresh
+    process: that is the definition of "no render backend" here. Anything else fails."""
+    tmp = tmp_path_factory.mktemp("probe")
+    probe = run_python(_PROBE.format(path=str(tmp / "probe.png")), tmp)
+    if probe.returncode != 0 or not (tmp / "probe.png").is_file():
+        pytest.skip(f"no off-screen render backend (pyvista probe exited {probe.returncode}: "
+                    f"{probe.stderr.strip()[-300:]})")

@@ -6,23 +6,18 @@ only when plain pyvista cannot render a sphere off-screen; any other failure fai
 """
 
 import json
-import os
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import run_python
 
 from femoat.render.animation import frame_states
 from femoat.render.wall import peak_state, wall_field
 
 ROOT = Path(__file__).resolve().parents[1]
-ENV = {**os.environ, "VTK_DEFAULT_OPENGL_WINDOW": "vtkEGLRenderWindow",
-       "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
-PROBE = ("import pyvista as pv; p = pv.Plotter(off_screen=True, window_size=(64, 64)); "
-         "p.add_mesh(pv.Sphere()); p.screenshot({path!r}); p.close()")
+
 
 # A building run with the 8-mode modal concrete wall (beam model) on both sides; shared by the
 # in-process tests and, verbatim, by the render subprocess.
@@ -92,20 +87,7 @@ def test_frames_decimate_the_run(modal_run):
 
 # ---- drawing, in a subprocess --------------------------------------------------------------
 
-def _python(code, cwd):
-    return subprocess.run([sys.executable, "-c", code], cwd=cwd, env=ENV, capture_output=True,
-                          text=True, timeout=300, check=False)
 
-
-@pytest.fixture(scope="module")
-def render_backend(tmp_path_factory):
-    """Skip when, and only when, plain pyvista cannot render a sphere off-screen in a fresh
-    process: that is the definition of "no render backend" here. Anything else fails."""
-    tmp = tmp_path_factory.mktemp("probe")
-    probe = _python(PROBE.format(path=str(tmp / "probe.png")), tmp)
-    if probe.returncode != 0 or not (tmp / "probe.png").is_file():
-        pytest.skip(f"no off-screen render backend (pyvista probe exited {probe.returncode}: "
-                    f"{probe.stderr.strip()[-300:]})")
 
 
 def _rgb(path):
@@ -128,7 +110,7 @@ def test_wall_peak_and_animation_render(tmp_path, render_backend):
                               quiet=[int(k) for k in (~f["contact"].any(axis=1)).nonzero()[0]],
                               magnification=state["magnification"])))
     """)
-    done = _python(script, tmp_path)
+    done = run_python(script, tmp_path)
     assert done.returncode == 0, done.stderr[-3000:]
     info = json.loads(done.stdout.strip().splitlines()[-1])
     png = _rgb(tmp_path / "wall_peak.png")
@@ -171,7 +153,7 @@ def test_render_command(tmp_path, render_backend):
         except ValueError as err:
             print("refused:", err)
     """)
-    done = _python(script, tmp_path)
+    done = run_python(script, tmp_path)
     assert done.returncode == 0, done.stderr[-3000:]
     assert "4 modes" in done.stdout
     assert "refused: --gif run.mp4" in done.stdout

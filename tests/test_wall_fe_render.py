@@ -1,37 +1,14 @@
 """Off-screen renders of wall meshes and modes, each in a subprocess (a missing OpenGL backend
 can crash VTK outright)."""
 
-import os
-import subprocess
-import sys
 import textwrap
-from pathlib import Path
 
 import numpy as np
-import pytest
-
-ROOT = Path(__file__).resolve().parents[1]
-ENV = {**os.environ, "VTK_DEFAULT_OPENGL_WINDOW": "vtkEGLRenderWindow",
-       "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
-
-PROBE = ("import pyvista as pv; p = pv.Plotter(off_screen=True, window_size=(64, 64)); "
-         "p.add_mesh(pv.Sphere()); p.screenshot({path!r}); p.close()")
+from conftest import run_python
 
 
-def _python(code, cwd):
-    return subprocess.run([sys.executable, "-c", code], cwd=cwd, env=ENV, capture_output=True,
-                          text=True, timeout=240)
 
 
-@pytest.fixture(scope="module")
-def render_backend(tmp_path_factory):
-    """Skip when, and only when, plain pyvista cannot render a sphere off-screen in a fresh
-    process: that is the definition of "no render backend" here. Anything else fails."""
-    tmp = tmp_path_factory.mktemp("probe")
-    probe = _python(PROBE.format(path=str(tmp / "probe.png")), tmp)
-    if probe.returncode != 0 or not (tmp / "probe.png").is_file():
-        pytest.skip(f"no off-screen render backend (pyvista probe exited {probe.returncode}: "
-                    f"{probe.stderr.strip()[-300:]})")
 
 
 def _image(path):
@@ -57,7 +34,7 @@ def test_regions_and_modes_render(tmp_path, render_backend):
         render_regions(plane.mesh, "regions_plane.png")
         render_modes(plane, modal_analysis(plane, 2), "modes_plane.png", n_modes=2)
     """)
-    run = _python(script, tmp_path)
+    run = run_python(script, tmp_path)
     assert run.returncode == 0, run.stderr[-2000:]
     for name in ("regions_solid", "modes_solid", "regions_plane", "modes_plane"):
         img = _image(tmp_path / f"{name}.png")
