@@ -142,8 +142,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     bufs = _buffers(cap, widths)
     energy = np.zeros(kn.N_ENERGY)
     stats = np.zeros(kn.N_STATS, dtype=np.int64)
-    state_t, h_state, pn_state = np.zeros(1), np.array([h_contact if ncon else dt_rec]), np.array([ag0])
-    h_state[0] = fopt[kn.F_HMAX]
+    state_t, h_state, pn_state = np.zeros(1), np.array([fopt[kn.F_HMAX]]), np.array([ag0])
 
     cpu0 = _time.process_time()
     targets = np.linspace(0, duration, chunks + 1)[1:]
@@ -164,7 +163,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             bufs = _grow(bufs, cap)
             continue
         if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
-            raise SolverError(_failure_message(packed, state_t[0], u, v, c_closed, integ))
+            raise SolverError(_failure_message(packed, state_t[0], u, v, c_closed, integ,
+                                               stalled=status == kn.STEP_TOO_SMALL))
         if progress is not None:
             progress(state_t[0], duration)
         if status == kn.DONE:
@@ -275,9 +275,16 @@ def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial
     return out
 
 
-def _failure_message(packed, t, u, v, closed, integ):
+def _failure_message(packed, t, u, v, closed, integ, stalled=False):
     where = ", ".join(f"{packed.c_names[c]} wall in contact" for c in range(closed.size)
                       if closed[c]) or "all gaps open"
+    if stalled:
+        return (
+            f"The solver stalled at t = {t:.6g} s ({where}; base displacement {u[0]:.4g} in, "
+            f"velocity {v[0]:.4g} in/s): 100000 step attempts without accepting one, while "
+            "locating a contact event. This is a solver defect; please report the scenario. "
+            "A looser Integrator(rtol=...) usually steps past it."
+        )
     return (
         f"The solver could not converge at t = {t:.6g} s ({where}; base displacement "
         f"{u[0]:.4g} in, velocity {v[0]:.4g} in/s) even at the smallest step "
