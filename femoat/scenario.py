@@ -29,6 +29,15 @@ Every table and key is optional; omitted values take the defaults of the paper s
     calibrate = false             # exact-restitution calibration at calibrate_v0 [in/s]
     calibrate_v0 = 10.0
 
+    [walls.fe]                    # optional: a finite-element wall (modal) replaces the SDOF wall
+    geometry = "wall.toml"        # wall geometry TOML (relative to the scenario file)
+    mesh = "wall.vtu"             # optional: your own mesh (its dimension sets the model)
+    model = "beam"                # "beam" | "plane" | "solid" (without a mesh)
+    modes = 8                     # omit for automatic (flexibility and 4/t_c cut-off)
+    flexibility = 0.99            # [-] automatic N: impact flexibility the modes must capture
+    residual = true               # add the residual-flexibility vector of the modes left out
+    damping_ratio = 2.0           # [-] every mode; default ξ_imp of the preset's SDOF wall
+
     [motion]
     source = "erzincan"           # "erzincan" | "at2" | "text" | "fema"
     path = "record.AT2"           # for at2/text (relative to the scenario file)
@@ -64,7 +73,9 @@ from femoat.walls.presets import wall_preset
 _KNOWN = {
     "building": {"base_weight", "floor_weights", "story_model", "story_damping_ratio",
                  "story_damping_period", "story", "isolator"},
-    "walls": {"preset", "damping", "law", "gap", "sides", "calibrate", "calibrate_v0"},
+    "walls": {"preset", "damping", "law", "gap", "sides", "calibrate", "calibrate_v0", "fe"},
+    "walls.fe": {"geometry", "mesh", "model", "modes", "flexibility", "residual",
+                 "damping_ratio"},
     "motion": {"source", "path", "dt", "units", "record_set", "record_id", "component", "pga",
                "time_scale", "extra_time", "column", "skip_rows"},
     "solver": {"rtol", "alpha", "max_step", "min_step", "newton_tol", "max_newton",
@@ -120,8 +131,12 @@ def building_from_dict(d):
     )
 
 
-def walls_from_dict(d):
-    """The moat walls (tuple of :class:`MoatWall`) from the ``[walls]`` table."""
+def walls_from_dict(d, base_dir=Path("."), base_mass=None):
+    """The moat walls (tuple of :class:`MoatWall`) from the ``[walls]`` table.
+
+    base_mass : float or None  the base mat's mass [kip·s²/in], for the contact time that sets
+        the automatic number of modes of a ``[walls.fe]`` wall (default: the law's m_eff)
+    """
     d = dict(d)
     _check_keys(d, _KNOWN["walls"], "[walls]")
     preset = wall_preset(d.get("preset", "concrete"), damping=d.get("damping", "published"))
@@ -132,7 +147,53 @@ def walls_from_dict(d):
     sides = {"both": (1, -1), "pos": (1,), "neg": (-1,), "none": ()}.get(d.get("sides", "both"))
     if sides is None:
         raise ValueError(f"[walls] sides = {d.get('sides')!r}: use 'both', 'pos', 'neg' or 'none'.")
-    return tuple(MoatWall(law, preset.wall, gap, s) for s in sides)
+    wall = preset.wall
+    if "fe" in d:
+        wall = fe_wall_from_dict(d["fe"], law, wall.damping_ratio, base_dir, base_mass)
+    return tuple(MoatWall(law, wall, gap, s) for s in sides)
+
+
+def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None):
+    """A :class:`~femoat.walls.ModalWall` from the ``[walls.fe]`` table.
+
+    law : ContactLaw  the contact law (its stiffness sets the contact time t_c)
+    damping_ratio : float  ξ [-] of every mode unless the table gives ``damping_ratio``
+    """
+    from femoat.walls.fe import beam_model, load_geometry, modal_analysis, plane_model, solid_model
+    from femoat.walls.fe.mesh_io import read_mesh
+    from femoat.walls.modal import ModalWall, contact_time
+
+    d = dict(d)
+    _check_keys(d, _KNOWN["walls.fe"], "[walls.fe]")
+    if "geometry" not in d:
+        raise ValueError("[walls.fe] needs geometry = 'wall.toml' (material, size, fixity, "
+                         "impact height; see femoat wall --help).")
+    geometry = load_geometry(_resolve(d["geometry"], base_dir))
+    builders = {"beam": beam_model, "plane": plane_model, "solid": solid_model}
+    mesh = None
+    kind = d.get("model", "beam")
+    if "mesh" in d:
+        mesh = read_mesh(_resolve(d["mesh"], base_dir))
+        dims = {1: "beam", 2: "plane", 3: "solid"}
+        if "model" in d and dims[mesh.dim()] != kind:
+            raise ValueError(f"[walls.fe] mesh is {mesh.dim()}D, which makes a "
+                             f"{dims[mesh.dim()]} model, not model = {kind!r}.")
+        kind = dims[mesh.dim()]
+    if kind not in builders:
+        raise ValueError(f"[walls.fe] model = {kind!r}: use 'beam', 'plane' or 'solid'.")
+    model = builders[kind](geometry, mesh=mesh)
+    modes = d.get("modes")
+    m1 = modal_analysis(model, 1).M1
+    t_c = contact_time(law, base_mass, m1)
+    return ModalWall.from_fe(model, n_modes=modes, contact_duration=t_c,
+                             flexibility_target=float(d.get("flexibility", 0.99)),
+                             damping_ratio=float(d.get("damping_ratio", damping_ratio)),
+                             residual=bool(d.get("residual", True)))
+
+
+def _resolve(path, base_dir):
+    p = Path(path)
+    return p if p.is_absolute() else Path(base_dir) / p
 
 
 def motion_from_dict(d, base_dir=Path(".")):
@@ -169,15 +230,17 @@ def motion_from_dict(d, base_dir=Path(".")):
 def _path(d, base_dir):
     if "path" not in d:
         raise ValueError("[motion] needs path = '...' for this source.")
-    p = Path(d["path"])
-    return p if p.is_absolute() else Path(base_dir) / p
+    return _resolve(d["path"], base_dir)
 
 
 def scenario_from_dict(d, base_dir=Path(".")):
     """Build a :class:`Scenario` from a parsed TOML document."""
     _check_keys(d, set(_KNOWN), "scenario")
-    model = PoundingModel(building_from_dict(d.get("building", {})),
-                          walls_from_dict(d.get("walls", {})))
+    from femoat.units import G
+
+    building = building_from_dict(d.get("building", {}))
+    model = PoundingModel(building, walls_from_dict(d.get("walls", {}), base_dir,
+                                                    building.base_weight / G))
     motion_d = d.get("motion", {})
     motion = motion_from_dict(motion_d, base_dir)
     solver = dict(d.get("solver", {}))

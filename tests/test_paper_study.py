@@ -129,6 +129,43 @@ def test_scenario_errors_name_the_key(tmp_path):
         load_scenario(tmp_path / "missing.toml")
 
 
+def test_scenario_with_a_finite_element_wall(tmp_path):
+    from pathlib import Path
+
+    from femoat.units import G
+    from femoat.walls import ModalWall, wall_preset
+    from femoat.walls.fe import beam_model, load_geometry, modal_analysis
+    from femoat.walls.modal import contact_time
+
+    meshes = Path(__file__).resolve().parents[1] / "meshes"
+    scen = tmp_path / "s.toml"
+    scen.write_text(
+        '[walls]\npreset = "concrete"\nlaw = "H"\nsides = "pos"\n'
+        f'[walls.fe]\ngeometry = "{(meshes / "concrete_wall.toml").as_posix()}"\n'
+        'model = "beam"\n[motion]\nsource = "erzincan"\n')
+    s = load_scenario(scen)
+    wall = s.model.walls[0].wall
+    assert isinstance(wall, ModalWall) and wall.residual
+    # The same wall built by hand: the automatic N from the contact time of the 10 kip base
+    # mat against M1, every mode at the preset's ξ_imp (200 % for the published concrete C_imp).
+    model = beam_model(load_geometry(meshes / "concrete_wall.toml"))
+    law = s.model.walls[0].law
+    xi = wall_preset("concrete").wall.damping_ratio
+    same = ModalWall.from_fe(model, contact_duration=contact_time(
+        law, 10.0 / G, modal_analysis(model, 1).M1), damping_ratio=xi)
+    # (eigsh starts from a random vector: the modes agree to ~1e-10, the residual stiffness
+    # 1/r_N, a difference of flexibilities 1e4 times larger than r_N, to ~1e-7)
+    np.testing.assert_allclose(wall.modal_stiffnesses, same.modal_stiffnesses, rtol=1e-6)
+    np.testing.assert_allclose(wall.damping_ratios, xi, rtol=1e-12)
+    r = run(s.model, s.motion, s.integrator, duration=4.0)
+    assert len(r.impacts) >= 1 and r.energy["residual"] < 1e-6
+    with pytest.raises(ValueError, match=r"\[walls.fe\] needs geometry"):
+        scenario_from_dict({"walls": {"fe": {"model": "beam"}}})
+    with pytest.raises(ValueError, match=r"\[walls.fe\] model = 'shell'"):
+        scenario_from_dict({"walls": {"fe": {"geometry": str(meshes / "concrete_wall.toml"),
+                                             "model": "shell"}}})
+
+
 def test_impact_cli_json_keys(capsys):
     assert main(["impact", "--law", "H", "--wall", "steel", "--v0", "10", "--rigid",
                  "--json"]) == 0

@@ -46,6 +46,9 @@ def add_parser(sub):
     w.add_argument("--flexibility", type=float, default=0.99,
                    help="flexibility fraction the modes must capture (default 0.99); the modes up "
                    "to 4/t_c are kept as well, t_c the contact time of base mat and wall")
+    w.add_argument("--no-residual", action="store_true",
+                   help="leave out the residual-flexibility vector of the modes not kept (by "
+                   "default it is added as one more mode)")
     w.add_argument("--damping-ratio", type=float, default=None,
                    help="damping ratio of every wall mode [-] (default: xi_imp of the "
                    "scenario's SDOF wall; 2.0 for the paper's concrete wall, 'consistent')")
@@ -126,7 +129,8 @@ def _render_wall(args):
     m1 = modal_analysis(model, 1).M1
     t_c = contact_time(first.law, building.building.base_weight / G, m1)
     wall = ModalWall.from_fe(model, n_modes=args.modes, flexibility_target=args.flexibility,
-                             contact_duration=t_c, damping_ratio=xi)
+                             contact_duration=t_c, damping_ratio=xi,
+                             residual=not args.no_residual)
     if args.run is not None:
         result = RunResult.load(args.run)
     else:
@@ -137,7 +141,9 @@ def _render_wall(args):
             result.save(args.save_run)
             print(f"wrote {args.save_run}")
     path, state = render_wall_peak(model, wall, result, args.out, side=args.side, at=args.at)
-    print(f"{kind} wall, {wall.n_modes} modes ({wall.source}), damping {wall.damping_source}")
+    count = f"{wall.n_modes - wall.residual} modes" + (" + residual-flexibility vector"
+                                                      if wall.residual else "")
+    print(f"{kind} wall, {count} ({wall.source}), damping {wall.damping_source}")
     what = "peak impact" if args.at == "force" else "largest displacement"
     print(f"{what} of the {state['side']} wall: t = {state['time']:.4f} s, F = "
           f"{state['force']:.3f} kip (peak {state['peak_force']:.3f} kip), impact-point displacement "

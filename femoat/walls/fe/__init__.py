@@ -18,8 +18,9 @@ never imported here).
 from femoat.walls.fe.beam import beam_model
 from femoat.walls.fe.geometry import WallGeometry, load_geometry
 from femoat.walls.fe.materials import Material, concrete, steel
-from femoat.walls.fe.modal import (ImpactModes, ModalResult, flexibility_fraction, impact_modes,
-                                   modal_analysis, modes_for_flexibility, static_stiffness)
+from femoat.walls.fe.modal import (ImpactModes, ModalResult, ResidualMode, flexibility_fraction,
+                                   impact_modes, modal_analysis, modes_for_flexibility,
+                                   residual_mode, static_stiffness)
 from femoat.walls.fe.model import WallModel
 from femoat.walls.fe.plane_stress import plane_model
 from femoat.walls.fe.solid import solid_model
@@ -27,5 +28,6 @@ from femoat.walls.fe.solid import solid_model
 __all__ = [
     "ImpactModes", "Material", "ModalResult", "WallGeometry", "WallModel", "beam_model",
     "concrete", "flexibility_fraction", "impact_modes", "load_geometry", "modal_analysis",
-    "modes_for_flexibility", "plane_model", "solid_model", "static_stiffness", "steel",
+    "modes_for_flexibility", "plane_model", "ResidualMode", "residual_mode", "solid_model",
+    "static_stiffness", "steel",
 ]

@@ -8,7 +8,7 @@ modal mass m_i = ψ_iᵀMψ_i = 1/p_i² and modal stiffness k_i = ω_i²·m_i. T
 the fundamental impact mode: M1 = m_1, K1 = k_1.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
@@ -41,6 +41,10 @@ class ModalResult:
     sdof_mode : int  index of the fundamental impact mode (the lowest mode with p ≠ 0)
     K1 : float  modal stiffness of that mode at unit impact displacement [kip/in]
     M1 : float  its modal mass [kip·s²/in]
+    static_shape : ndarray or None  the static deflection under a unit impact force, K⁻¹c, as a
+        full DOF vector [in/kip] (for the residual-flexibility vector, :func:`residual_mode`)
+    model : WallModel or None  the model the modes belong to (its mass matrix is needed by
+        :func:`residual_mode`)
     """
 
     kind: str
@@ -56,6 +60,8 @@ class ModalResult:
     sdof_mode: int
     K1: float
     M1: float
+    static_shape: np.ndarray | None = field(default=None, repr=False)
+    model: object = field(default=None, repr=False)
 
     @property
     def modal_weight(self):
@@ -145,7 +151,8 @@ def modal_analysis(model, n_modes=6):
     sign = np.where(big, np.sign(p), np.sign(phi[np.abs(phi).argmax(axis=0), np.arange(phi.shape[1])]))
     phi, p = phi * sign, p * sign
     gamma = phi.T @ mass_r[free]
-    flex = c @ lu.solve(c)
+    static = lu.solve(c)
+    flex = c @ static
     omega = np.sqrt(lam)
     if not big.any():
         raise ValueError("no computed mode moves the impact point; raise n_modes")
@@ -166,7 +173,15 @@ def modal_analysis(model, n_modes=6):
         sdof_mode=first,
         K1=float(lam[first] / p[first] ** 2),
         M1=float(1.0 / p[first] ** 2),
+        static_shape=_full(model, free, static),
+        model=model,
     )
+
+
+def _full(model, free, values):
+    out = np.zeros(model.n_dofs)
+    out[free] = values
+    return out
 
 
 def flexibility_fraction(result, n):
@@ -210,3 +225,61 @@ def modes_for_flexibility(result, target):
         raise ValueError(f"the {len(p)} computed modes capture only {cumulative[-1]:.4f} of the "
                          f"impact flexibility (< {target}): run modal_analysis with more n_modes")
     return int(reached[0]) + 1
+
+
+@dataclass(frozen=True, eq=False)
+class ResidualMode:
+    """The static part of the modes left out, as one more (Ritz) mode at the impact point.
+
+    shape : ndarray (n_dofs,)  ψ_r, normalised to unit impact displacement [in/in]
+    modal_mass : float  m_r = ψ_rᵀMψ_r [kip·s²/in]
+    modal_stiffness : float  k_r = ψ_rᵀKψ_r = 1/r_N [kip/in]
+    ground_factor : float  L_r = ψ_rᵀ·M·r [kip·s²/in]
+    frequency : float  its Rayleigh-quotient frequency √(k_r/m_r)/2π [Hz]
+    flexibility : float  r_N, the impact flexibility the kept modes miss [in/kip]
+    """
+
+    shape: np.ndarray
+    modal_mass: float
+    modal_stiffness: float
+    ground_factor: float
+    frequency: float
+    flexibility: float
+
+
+def residual_mode(result, kept):
+    """The residual-flexibility vector of the modes ``kept`` (modal truncation augmentation).
+
+    A modal wall of N modes misses the impact flexibility r_N = cᵀK⁻¹c − Σ_{i≤N} p_i²/ω_i² of
+    the modes above them. Those modes respond quasi-statically to a contact force that is slow
+    for them, so their sum is the static deflection x_r = K⁻¹c − Σ_{i≤N} φ_i·p_i/ω_i² (Dickens,
+    Nakagawa & Wittbrodt 1997, "A critique of mode acceleration and modal truncation
+    augmentation methods"). x_r is M- and K-orthogonal to every kept mode (φ_iᵀMK⁻¹c = p_i/ω_i²
+    and φ_iᵀc = p_i), so it is one more uncoupled oscillator; normalised to unit impact
+    displacement it has stiffness 1/r_N, and the N + 1 oscillators reproduce the full static
+    impact flexibility exactly. Returns None when nothing is missing (all modes kept, r_N ≤ 1e-12
+    of the static flexibility).
+
+    result : ModalResult  from :func:`modal_analysis` (carries K⁻¹c and the model)
+    kept : sequence[int]  indices of the kept modes in ``result``
+    """
+    if result.static_shape is None or result.model is None:
+        raise ValueError("this ModalResult carries no static deflection and model (built by "
+                         "hand?): run femoat.walls.fe.modal_analysis on the WallModel")
+    kept = np.asarray(kept, dtype=int)
+    model = result.model
+    free = model.free
+    lam = result.angular_frequencies[kept] ** 2
+    p = result.impact_participation[kept]
+    x = result.static_shape[free] - result.shapes[free][:, kept] @ (p / lam)
+    c = model.impact[free]
+    r = float(c @ x)
+    if r <= 1e-12 * result.static_flexibility:
+        return None
+    psi = x / r
+    M = model.mass[free][:, free]
+    m = float(psi @ (M @ psi))
+    ground = float(psi @ (model.mass @ model.ground)[free])
+    return ResidualMode(shape=_full(model, free, psi), modal_mass=m, modal_stiffness=1.0 / r,
+                        ground_factor=ground, frequency=float(np.sqrt(1.0 / (r * m)) / (2 * np.pi)),
+                        flexibility=r)
