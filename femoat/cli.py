@@ -5,7 +5,7 @@ import importlib
 import sys
 
 # Subcommand modules, each with ``add_parser(subparsers)`` and ``run(args) -> int``.
-COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees"]
+COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees", "compile"]
 
 
 def build_parser():

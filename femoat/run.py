@@ -9,7 +9,7 @@ from femoat.structure.pounding import PoundingModel
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
-        progress=None, channels=None):
+        progress=None, channels=None, backend="auto"):
     """Integrate ``model`` under ``motion`` and return a :class:`~femoat.results.RunResult`.
 
     Parameters
@@ -31,6 +31,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     channels : iterable of str or None
         Histories to record (see :data:`femoat.integration.solve.CHANNELS`); None records all.
         Decimate the open phase with ``Integrator(record_every=k)``.
+    backend : str
+        Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
+        "aot" (see :mod:`femoat.aot`); the results are identical.
     """
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
@@ -42,7 +45,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     packed = model.pack()
     kw = {} if channels is None else dict(channels=tuple(channels))
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, **kw)
+                 progress=progress, backend=backend, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],

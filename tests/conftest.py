@@ -4,6 +4,10 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
+# The tests run numba's JIT kernels and never build the ahead-of-time module in the user's cache
+# (test_aot.py builds and checks it in a temporary folder).
+os.environ["FEMOAT_AOT"] = "0"
+
 from pathlib import Path  # noqa: E402
 
 # shared/ lies beside the repository (CI clones main with shared/ next to it).

@@ -39,4 +39,14 @@ def run(args):
     print(format_table(summary_rows(runs)))
     for p in paths:
         print(f"wrote {p}")
+    _compile_ahead_of_time()
     return 0
+
+
+def _compile_ahead_of_time():
+    """Once per install: the solver's ahead-of-time kernels, so later processes start fast."""
+    import sys
+
+    from femoat import aot
+
+    aot.ensure(report=lambda message: print(message, file=sys.stderr, flush=True))

@@ -43,4 +43,7 @@ def run(args):
         for k, v in result.peaks.items():
             print(f"{k:28s} {v}")
         print(f"wrote {out / 'run.npz'}")
+    from femoat.commands.paper import _compile_ahead_of_time
+
+    _compile_ahead_of_time()
     return 0

@@ -29,7 +29,7 @@ History ``h``: ``h[0]`` approach velocity δ̇₀ captured at gap closure [in/s]
 """
 
 import numpy as np
-from numba import njit
+from femoat.jit import njit
 
 LINEAR, KELVIN_VOIGT, JANKOWSKI, HERTZDAMP, MUTHUKUMAR = 0, 1, 2, 3, 4
 N_PARAMS = 11

@@ -24,7 +24,7 @@ starts (capturing δ̇₀) or ends.
 from pathlib import Path
 
 import numpy as np
-from numba import njit
+from femoat.jit import njit
 
 from femoat.numba_cache import drop_stale_cache
 

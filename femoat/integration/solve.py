@@ -37,7 +37,7 @@ CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-          chunks=20, lazy=True, channels=CHANNELS):
+          chunks=20, lazy=True, channels=CHANNELS, backend="auto"):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -62,7 +62,11 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         Skip the wall DOFs in the Newton elimination while no contact carries force (exact: the
         walls are then uncoupled linear oscillators). False solves the full system every step
         (for measuring what the lazy path saves).
+    backend : str
+        "auto" (the ahead-of-time compiled kernels of :mod:`femoat.aot` when built, else numba's
+        JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
     """
+    kern, backend = kernels(backend)
     integ = integrator or Integrator()
     ag = np.ascontiguousarray(ag, dtype=float)
     if ag.ndim != 1 or ag.size < 2 or not np.all(np.isfinite(ag)):
@@ -117,9 +121,9 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
              ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon))
 
     # initial equilibrium: M·a0 = p0 − F(u0, v0)
-    ag0 = kn.ground_accel(ag, dt_rec, 0.0)
+    ag0 = kern.ground_accel(ag, dt_rec, 0.0)
     Fn = np.zeros(n)
-    kn._internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
+    kern.internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
                        packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
                        packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False,
                        n)
@@ -131,7 +135,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
                 f"{c_d[c]:.3g} in); start the base mat inside the gap.")
 
-    e_initial = _initial_energy(packed, u, v)
+    e_initial = _initial_energy(kern, packed, u, v)
     unknown = set(channels) - set(CHANNELS)
     if unknown:
         raise ValueError(f"channels: {sorted(unknown)} unknown; choose from {CHANNELS}.")
@@ -148,7 +152,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     targets = np.linspace(0, duration, chunks + 1)[1:]
     k = 0
     while True:
-        status = kn.run_chunk(
+        status = kern.run_chunk(
             targets[k], state_t, h_state, u, v, a, Fn, pn_state,
             packed.M, packed.C, packed.K, packed.r, ag,
             packed.el_i, packed.el_j, packed.el_code, packed.el_P, el_S, el_f, el_d, el_W,
@@ -190,11 +194,41 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
-                   cpu_seconds=cpu, recorded=int(m)),
-        energy=_energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial),
+                   cpu_seconds=cpu, recorded=int(m), kernels=backend),
+        energy=_energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy,
+                       e_initial),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
+
+
+def kernels(backend="auto"):
+    """(namespace of the solver's compiled entry points, "aot" or "jit") for ``backend``."""
+    from femoat import aot
+
+    if backend not in ("auto", "jit", "aot"):
+        raise ValueError(f"backend = {backend!r}: use 'auto', 'jit' or 'aot'.")
+    if backend != "jit":
+        module = aot.load()
+        if module is not None:
+            return module, "aot"
+        if backend == "aot":
+            raise ValueError("no ahead-of-time compiled kernels for this femoat, Python and "
+                             "numba: run `femoat compile` (or femoat.aot.build()), or use "
+                             "backend='auto'.")
+    return _jit_kernels(), "jit"
+
+
+def _jit_kernels():
+    from types import SimpleNamespace
+
+    from femoat.contact.kernels import contact_stored_energy
+    from femoat.structure.materials import material_commit, material_recoverable_energy
+
+    return SimpleNamespace(run_chunk=kn.run_chunk, ground_accel=kn.ground_accel,
+                           internal_force=kn._internal_force, material_commit=material_commit,
+                           material_recoverable_energy=material_recoverable_energy,
+                           contact_stored_energy=contact_stored_energy)
 
 
 def _uncoupled_size(packed, lazy):
@@ -230,10 +264,10 @@ def _grow(bufs, cap):
     return out
 
 
-def _initial_energy(packed, u, v):
+def _initial_energy(kern, packed, u, v):
     """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
-    from femoat.structure.materials import material_commit, material_recoverable_energy
-
+    material_commit, material_recoverable_energy = (kern.material_commit,
+                                                    kern.material_recoverable_energy)
     e = 0.5 * v @ packed.M @ v + 0.5 * u @ packed.K @ u
     for k in range(packed.el_code.size):
         i, j = packed.el_i[k], packed.el_j[k]
@@ -244,10 +278,9 @@ def _initial_energy(packed, u, v):
     return float(e)
 
 
-def _energy(packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
-    from femoat.contact.kernels import contact_stored_energy
-    from femoat.structure.materials import material_recoverable_energy
-
+def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
+    contact_stored_energy = kern.contact_stored_energy
+    material_recoverable_energy = kern.material_recoverable_energy
     kinetic = 0.5 * v @ packed.M @ v
     linear_strain = 0.5 * u @ packed.K @ u
     el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])

@@ -18,7 +18,7 @@ Nothing here allocates.
 from pathlib import Path
 
 import numpy as np
-from numba import njit
+from femoat.jit import njit
 
 from femoat.numba_cache import drop_stale_cache
 

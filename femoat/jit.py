@@ -1,0 +1,66 @@
+"""``njit`` that imports numba only when a kernel is first compiled or called from Python.
+
+Importing numba and initialising its CPU target costs about 1.2 s per process here (numba's own
+import, its registries, and the scipy.linalg import numba makes for BLAS), more than a whole
+paper run. femoat's kernels are decorated with :func:`njit` from this module instead of
+numba's: the decorator only records the function, and numba is imported on the first call
+from Python (or when another kernel that calls this one is compiled). A process that runs the
+building solver through the ahead-of-time compiled module (:mod:`femoat.aot`) never imports
+numba at all.
+
+Inside compiled code a :class:`Kernel` is exactly its numba dispatcher: numba is taught to
+type it as one (``typeof`` is registered for :class:`Kernel` when numba is first imported
+here), so kernels call kernels at full speed and numba's on-disk cache works as before.
+"""
+
+import functools
+
+_registered = False
+
+
+def njit(*args, **options):
+    """Like ``numba.njit`` (with or without options), compiled lazily; see the module docstring."""
+    if args and callable(args[0]) and len(args) == 1 and not options:
+        return Kernel(args[0], {})
+    if args:
+        raise TypeError("femoat.jit.njit takes keyword options only (e.g. cache=True)")
+    return lambda func: Kernel(func, options)
+
+
+class Kernel:
+    """A Python function to be compiled by numba on first use."""
+
+    def __init__(self, py_func, options):
+        self.py_func = py_func
+        self.options = options
+        self._dispatcher = None
+        functools.update_wrapper(self, py_func)
+
+    @property
+    def dispatcher(self):
+        """The numba dispatcher (numba is imported and this function registered on first use)."""
+        if self._dispatcher is None:
+            _register()
+            import numba
+
+            self._dispatcher = numba.njit(**self.options)(self.py_func)
+        return self._dispatcher
+
+    def __call__(self, *args):
+        return self.dispatcher(*args)
+
+    def __repr__(self):
+        return f"<femoat kernel {self.py_func.__module__}.{self.py_func.__qualname__}>"
+
+
+def _register():
+    global _registered
+    if _registered:
+        return
+    from numba.core.typing.typeof import typeof_impl
+
+    @typeof_impl.register(Kernel)
+    def _typeof_kernel(value, context):
+        return typeof_impl(value.dispatcher, context)
+
+    _registered = True

@@ -1,0 +1,116 @@
+"""Process start-up: lazy numba, and the ahead-of-time compiled solver kernels (femoat.aot).
+
+A new process must not pay for numba (≈1.2 s here) when the compiled kernels exist; the AOT
+kernels must give exactly the JIT's results. The build runs in a temporary cache folder
+(FEMOAT_CACHE) in a subprocess, so the user's cache is never touched.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from femoat import aot
+from femoat.paper import paper_model, paper_motion
+from femoat.run import run
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _python(code, env):
+    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                          timeout=900, check=False, cwd=ROOT)
+
+
+def _env(cache, aot_on=True):
+    return {**os.environ, "FEMOAT_CACHE": str(cache), "FEMOAT_AOT": "1" if aot_on else "0",
+            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+
+
+def test_importing_the_solver_does_not_import_numba(tmp_path):
+    code = ("import sys, femoat.paper, femoat.run, femoat.scenario, femoat.cli; "
+            "print('numba' in sys.modules)")
+    done = _python(code, _env(tmp_path))
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "False"
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    if shutil.which("cc") is None and shutil.which("gcc") is None:
+        pytest.skip("no C compiler: numba.pycc cannot link the ahead-of-time module")
+    cache = tmp_path_factory.mktemp("cache")
+    done = _python("from femoat.cli import main; raise SystemExit(main(['compile']))",
+                   _env(cache))
+    assert done.returncode == 0, done.stderr[-3000:]
+    return cache
+
+
+def test_aot_kernels_match_the_jit_and_skip_numba(built, tmp_path):
+    out = tmp_path / "aot.npz"
+    code = (
+        "import sys, json\n"
+        "from femoat.paper import paper_model, paper_motion\n"
+        "from femoat.run import run\n"
+        "r = run(paper_model('steel', 'J'), paper_motion(quick=True))\n"
+        f"r.save({str(out)!r})\n"
+        "print(json.dumps([r.meta['stats']['kernels'], 'numba' in sys.modules]))\n"
+    )
+    done = _python(code, _env(built))
+    assert done.returncode == 0, done.stderr[-3000:]
+    kernels, numba_imported = json.loads(done.stdout.strip().splitlines()[-1])
+    assert kernels == "aot" and not numba_imported
+    # Same LLVM code for the same inputs: bit-identical histories, not merely close.
+    from femoat.results import RunResult
+
+    a = RunResult.load(out)
+    j = run(paper_model("steel", "J"), paper_motion(quick=True), backend="jit")
+    assert j.meta["stats"]["kernels"] == "jit"
+    np.testing.assert_array_equal(a.time, j.time)
+    np.testing.assert_array_equal(a.displacement, j.displacement)
+    np.testing.assert_array_equal(a.contact_force, j.contact_force)
+    assert a.meta["stats"]["steps"] == j.meta["stats"]["steps"]
+    assert a.energy == j.energy
+
+
+def test_compile_check_and_switch(built, tmp_path):
+    check = "from femoat.cli import main; raise SystemExit(main(['compile', '--check']))"
+    assert _python(check, _env(built)).returncode == 0
+    assert _python(check, _env(tmp_path)).returncode == 1  # an empty cache: not built
+    # FEMOAT_AOT=0: the built module is ignored, the JIT runs.
+    code = ("from femoat.integration.solve import kernels; print(kernels()[1])")
+    assert _python(code, _env(built, aot_on=False)).stdout.strip() == "jit"
+    assert _python(code, _env(built)).stdout.strip() == "aot"
+
+
+def test_asking_for_missing_aot_kernels_is_explained():
+    # The test session runs with FEMOAT_AOT=0 (conftest), so nothing is loaded.
+    with pytest.raises(ValueError, match="femoat compile"):
+        run(paper_model("concrete", "H"), paper_motion(quick=True), duration=0.1, backend="aot")
+    with pytest.raises(ValueError, match="backend = 'gpu'"):
+        run(paper_model("concrete", "H"), paper_motion(quick=True), duration=0.1, backend="gpu")
+
+
+def test_module_key_follows_the_kernel_sources(tmp_path, monkeypatch):
+    # A copy of the package's kernel sources: the key must change when any of them changes,
+    # so an edited kernel is never served by a stale compiled module.
+    src = Path(aot.__file__).resolve().parent
+    for entry in aot._SOURCES:
+        p = src / entry
+        dst = tmp_path / entry
+        if p.is_dir():
+            shutil.copytree(p, dst, ignore=shutil.ignore_patterns("__pycache__"))
+        else:
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(p, dst)
+    monkeypatch.setattr(aot, "_ROOT", tmp_path)
+    first = aot.module_path()
+    assert aot.module_path() == first
+    with open(tmp_path / "structure" / "materials" / "imk.py", "a") as f:
+        f.write("\n# edited\n")
+    assert aot.module_path() != first
