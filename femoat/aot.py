@@ -18,6 +18,7 @@ JIT kernels (the same LLVM code).
   is within a few per cent of host-tuned code on this solver.
 """
 
+import functools
 import hashlib
 import importlib.machinery
 import importlib.util
@@ -34,6 +35,7 @@ EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
            "material_recoverable_energy", "contact_stored_energy")
 """The functions the building solver calls from Python (:mod:`femoat.integration.solve`)."""
 
+OPTIONS_NO_NRT = True  # as femoat.jit.OPTIONS: no kernel allocates
 _ROOT = Path(__file__).resolve().parent
 _SOURCES = ("jit.py", "contact/kernels.py", "integration/kernel.py", "structure/materials")
 _loaded = {}
@@ -46,23 +48,29 @@ def enabled():
 
 def module_path():
     """Where the compiled module for these sources, this Python and this numba lives."""
+    root = os.environ.get("FEMOAT_CACHE")
+    base = Path(root) if root else (Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
+                                    / "femoat")
+    suffix = importlib.machinery.EXTENSION_SUFFIXES[0]
+    return base / "aot" / f"{MODULE}-{_key(_ROOT)}{suffix}"
+
+
+@functools.lru_cache(maxsize=4)
+def _key(root):
+    """Hash of the kernel sources, Python, numba and platform (once per process and root)."""
     h = hashlib.sha256()
     for entry in _SOURCES:
-        p = _ROOT / entry
+        p = root / entry
         for f in sorted(p.glob("*.py")) if p.is_dir() else [p]:
-            h.update(f.relative_to(_ROOT).as_posix().encode())
+            h.update(f.relative_to(root).as_posix().encode())
             h.update(f.read_bytes())
     try:
         numba_version = metadata.version("numba")
     except metadata.PackageNotFoundError:
         numba_version = "none"
     h.update(f"{sys.implementation.cache_tag} numba {numba_version} {sys.platform} "
-             f"{platform.machine()}".encode())
-    root = os.environ.get("FEMOAT_CACHE")
-    base = Path(root) if root else (Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
-                                    / "femoat")
-    suffix = importlib.machinery.EXTENSION_SUFFIXES[0]
-    return base / "aot" / f"{MODULE}-{h.hexdigest()[:16]}{suffix}"
+             f"{platform.machine()} nrt={not OPTIONS_NO_NRT}".encode())
+    return h.hexdigest()[:16]
 
 
 def load():
@@ -112,6 +120,7 @@ def build(force=False):
             cc = CC(MODULE)
             cc.output_dir = str(work)
             cc.output_file = path.name
+            cc.use_nrt = not OPTIONS_NO_NRT
             for name, (kernel, sig) in signatures.items():
                 cc.export(name, sig)(kernel.py_func)
             try:

@@ -14,8 +14,16 @@ here), so kernels call kernels at full speed and numba's on-disk cache works as 
 """
 
 import functools
+import sys
+from pathlib import Path
 
 _registered = False
+_checked = set()
+
+OPTIONS = {"_nrt": False}
+"""Compile options for every kernel. No kernel allocates, so numba's reference-counted runtime
+is switched off: with it, every array passed between kernels (and every row view ``P[e]``)
+costs an atomic increment and decrement, which was half of the solver's run time."""
 
 
 def njit(*args, **options):
@@ -41,9 +49,10 @@ class Kernel:
         """The numba dispatcher (numba is imported and this function registered on first use)."""
         if self._dispatcher is None:
             _register()
+            _fresh_cache(self.py_func)
             import numba
 
-            self._dispatcher = numba.njit(**self.options)(self.py_func)
+            self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
         return self._dispatcher
 
     def __call__(self, *args):
@@ -51,6 +60,18 @@ class Kernel:
 
     def __repr__(self):
         return f"<femoat kernel {self.py_func.__module__}.{self.py_func.__qualname__}>"
+
+
+def _fresh_cache(func):
+    """numba's cache does not key on compile options: drop a module's cached kernels when this
+    file (which sets them) changed since they were compiled."""
+    from femoat.numba_cache import drop_stale_cache
+
+    module_file = getattr(sys.modules.get(func.__module__), "__file__", None)
+    if module_file is None or module_file in _checked:
+        return
+    _checked.add(module_file)
+    drop_stale_cache(module_file, [__file__], tag="jit")
 
 
 def _register():

@@ -10,8 +10,12 @@ import hashlib
 from pathlib import Path
 
 
-def drop_stale_cache(module_file, dependencies):
-    """Delete ``module_file``'s numba cache files if any file in ``dependencies`` changed."""
+def drop_stale_cache(module_file, dependencies, tag="deps"):
+    """Delete ``module_file``'s numba cache files if any file in ``dependencies`` changed.
+
+    ``tag`` names the stamp file, so that independent checks of one module (its inlined
+    dependencies; femoat.jit's compile options) do not overwrite each other's stamps.
+    """
     module_file = Path(module_file)
     cache_dir = module_file.parent / "__pycache__"
     h = hashlib.sha256()
@@ -21,7 +25,7 @@ def drop_stale_cache(module_file, dependencies):
         except OSError:
             return
     digest = h.hexdigest()
-    stamp = cache_dir / f"{module_file.stem}.deps-sha256"
+    stamp = cache_dir / f"{module_file.stem}.{tag}-sha256"
     try:
         if stamp.read_text() == digest:
             return

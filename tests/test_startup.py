@@ -96,7 +96,7 @@ def test_asking_for_missing_aot_kernels_is_explained():
         run(paper_model("concrete", "H"), paper_motion(quick=True), duration=0.1, backend="gpu")
 
 
-def test_module_key_follows_the_kernel_sources(tmp_path, monkeypatch):
+def test_module_key_follows_the_kernel_sources(tmp_path):
     # A copy of the package's kernel sources: the key must change when any of them changes,
     # so an edited kernel is never served by a stale compiled module.
     src = Path(aot.__file__).resolve().parent
@@ -108,9 +108,9 @@ def test_module_key_follows_the_kernel_sources(tmp_path, monkeypatch):
         else:
             dst.parent.mkdir(parents=True, exist_ok=True)
             shutil.copy(p, dst)
-    monkeypatch.setattr(aot, "_ROOT", tmp_path)
-    first = aot.module_path()
-    assert aot.module_path() == first
+    first = aot._key(tmp_path)
+    assert first == aot._key(src)  # same sources, same key
     with open(tmp_path / "structure" / "materials" / "imk.py", "a") as f:
         f.write("\n# edited\n")
-    assert aot.module_path() != first
+    aot._key.cache_clear()  # (computed once per process: sources do not change under a run)
+    assert aot._key(tmp_path) != first

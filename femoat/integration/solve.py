@@ -142,7 +142,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     chan = set(channels) | {"displacement", "contacts"}
     widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
                   el=nel if "elements" in chan else 0, c=ncon)
-    cap = 4096
+    # room for every record sample plus contact steps (grown by doubling when short)
+    cap = int(1.2 * duration / dt_rec / integ.record_every) + 1024
     bufs = _buffers(cap, widths)
     energy = np.zeros(kn.N_ENERGY)
     stats = np.zeros(kn.N_STATS, dtype=np.int64)
