@@ -279,6 +279,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
 
     stalls = 0
     shortened = False
+    landing = -1  # the contact whose located separation the shortened step lands on
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
         stalls += 1
         if stalls > 100000:
@@ -509,6 +510,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 stats[S_REJECT_ERR] += 1
                 h = h_new
                 shortened = True
+                landing = c_min if c_closed[c_min] else -1
                 continue
             if h_new < hmin:
                 # the crossing is closer than the smallest step: the event happens at the
@@ -563,7 +565,12 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 v_close = max(v_close, dd1)
                 toggled = True
                 stats[S_EVENTS] += 1
-            elif c_closed[c] and w_cd[c] <= gap_tol and dd1 < 0.0:
+            elif c_closed[c] and w_cd[c] <= gap_tol and dd1 < 0.0 and (landing == c
+                                                                        or w_cd[c] < -gap_tol):
+                # separation: only at the located crossing (the step was shortened onto it) or
+                # once the gap has opened by more than gap_tol. A contact resting within
+                # ±gap_tol of δ = 0 stays closed (it carries no force there) instead of
+                # opening and closing at every step.
                 c_closed[c] = 0
                 toggled = True
                 stats[S_EVENTS] += 1
@@ -576,6 +583,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
         t = t1
         stalls = 0
         shortened = False
+        landing = -1
         if toggled:
             _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
                      c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
