@@ -25,7 +25,9 @@ idx   name        meaning
 ====  ==========  ==========================================================
 
 History ``h``: ``h[0]`` approach velocity δ̇₀ captured at gap closure [in/s] (Hertzdamp);
-``h[1]`` largest indentation reached so far δ_m [in] (Muthukumar).
+``h[1]`` largest indentation reached so far δ_m [in] (Muthukumar); for the implicit time
+stepping only (:func:`step_force`, :func:`step_commit`): ``h[2]`` the indentation δ_n at the last
+committed step [in] and ``h[3]`` the elastic force f̃_n the step used there [kip].
 """
 
 import numpy as np
@@ -33,7 +35,7 @@ from femoat.jit import njit
 
 LINEAR, KELVIN_VOIGT, JANKOWSKI, HERTZDAMP, MUTHUKUMAR = 0, 1, 2, 3, 4
 N_PARAMS = 11
-N_HISTORY = 2
+N_HISTORY = 4
 
 _KH, _KEFF, _CEFF, _XIJ, _XIH, _K1, _K2, _DY, _MEFF, _TENSION, _V0MIN = range(N_PARAMS)
 
@@ -110,6 +112,8 @@ def contact_closure(h, v):
     """
     h[0] = v
     h[1] = 0.0
+    h[2] = 0.0
+    h[3] = 0.0
 
 
 @njit(cache=True)
@@ -142,3 +146,68 @@ def contact_stored_energy(code, p, h, d):
     f_corner = k2 * dk
     f_d, _ = _muthukumar(p, dm, d)
     return 0.5 * k2 * dk * dk + 0.5 * (f_corner + f_d) * (d - dk)
+
+
+# ---- implicit time stepping: an energy-consistent Hertz spring --------------------------------
+#
+# The trapezoidal rule (Newmark average acceleration) conserves the energy of a linear spring
+# exactly, but not of the hardening Hertz spring k_h·δ^1.5 of the Jankowski and Hertzdamp laws:
+# over a step it does the work ½(f₀ + f₁)·Δδ instead of ΔΦ, Φ = 0.4·k_h·δ^2.5, and over many
+# impacts of a lossless (e = 1) law the difference accumulates into an energy gain (5 % after 60
+# impacts at rtol = 1e-4, measured). In the time-stepping loops the elastic part therefore uses
+# the discrete gradient: the end-of-step force f̃₁ is chosen so that ½(f̃₀ + f̃₁)·Δδ = ΔΦ
+# exactly, f̃₁ = 2·ΔΦ/Δδ − f̃₀, with f̃₀ the value the previous step ended with (h[3]); f̃ differs
+# from k_h·δ^1.5 by the trapezoidal defect, O(Δδ²·f''), alternating in sign. The damping part
+# of the law is unchanged. The single-impact solver (an ODE solver, not the trapezoidal rule)
+# keeps using contact_force.
+
+
+@njit(cache=True)
+def _hertz_gradient(kh, d0, f0, d):
+    """(f̃₁, df̃₁/dδ₁) of the discrete gradient from (δ₀, f̃₀) to δ₁ = d (Φ = 0 for δ ≤ 0)."""
+    d1p = max(d, 0.0)
+    d0p = max(d0, 0.0)
+    dd = d - d0
+    if abs(dd) > 1e-6 * max(d1p, d0p):
+        phi1 = 0.4 * kh * d1p * d1p * np.sqrt(d1p)
+        phi0 = 0.4 * kh * d0p * d0p * np.sqrt(d0p)
+        fe = kh * d1p * np.sqrt(d1p)
+        dphi = phi1 - phi0
+        return 2.0 * dphi / dd - f0, 2.0 * (fe * dd - dphi) / (dd * dd)
+    # ΔΦ/Δδ = f(δ_mid) + O(Δδ²·f''): no cancellation for tiny steps
+    dm = max(0.5 * (d + d0), 0.0)
+    sm = np.sqrt(dm)
+    return 2.0 * kh * dm * sm - f0, 1.5 * kh * sm
+
+
+@njit(cache=True)
+def step_force(code, p, h, d, v):
+    """contact_force for an implicit trapezoidal step from the committed state (h[2], h[3]).
+
+    Identical to :func:`contact_force` except for the elastic part k_h·δ^1.5 of the Jankowski
+    and Hertzdamp laws, which is replaced by its discrete gradient (see above); the step that
+    ends a contact (δ₁ ≤ 0, from δ₀ > 0) returns the energy stored at δ₀ too.
+    """
+    f, kf, cf = contact_force(code, p, h, d, v)
+    if code != JANKOWSKI and code != HERTZDAMP:
+        return f, kf, cf
+    if d <= 0.0 and h[2] <= 0.0:
+        return f, kf, cf
+    fe, kfe = 0.0, 0.0
+    if d > 0.0:
+        sd = np.sqrt(d)
+        fe = p[_KH] * d * sd
+        kfe = 1.5 * p[_KH] * sd
+    g, kg = _hertz_gradient(p[_KH], h[2], h[3], d)
+    return f - fe + g, kf - kfe + kg, cf
+
+
+@njit(cache=True)
+def step_commit(code, p, h, d):
+    """contact_commit, plus the state (δ_n, f̃_n) the next step's discrete gradient starts from."""
+    contact_commit(h, d)
+    g = 0.0
+    if (code == JANKOWSKI or code == HERTZDAMP) and (d > 0.0 or h[2] > 0.0):
+        g = _hertz_gradient(p[_KH], h[2], h[3], d)[0]
+    h[2] = d
+    h[3] = g if d > 0.0 else 0.0

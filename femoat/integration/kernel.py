@@ -33,10 +33,13 @@ drop_stale_cache(__file__, [_PKG / "contact" / "kernels.py",
                             *sorted((_PKG / "structure" / "materials").glob("*.py"))])
 
 from femoat.contact.kernels import (  # noqa: E402
+    HERTZDAMP,
+    JANKOWSKI,
     KELVIN_VOIGT,
     contact_closure,
-    contact_commit,
     contact_force,
+    step_commit,
+    step_force,
 )
 from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
@@ -172,7 +175,7 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
         dk = d
         if d <= 0.0 and c_code[c] == KELVIN_VOIGT:
             dk = 1e-300
-        f, kf, cf = contact_force(c_code[c], c_P[c], c_H[c], dk, dv)
+        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], dk, dv)
         c_f[c] = f
         if f != 0.0 or kf != 0.0 or cf != 0.0:
             for i in range(n):
@@ -553,7 +556,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
         v_close = 0.0
         for c in range(ncon):
             c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
-            contact_commit(c_H[c], w_cd[c])
+            step_commit(c_code[c], c_P[c], c_H[c], w_cd[c])
             c_f[c] = w_cf[c]
             c_d[c] = w_cd[c]
             dd1 = 0.0
@@ -616,11 +619,15 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 out_ef[k, e] = el_f[e]
                 out_ed[k, e] = el_d[e]
             for c in range(ncon):
-                out_cf[k, c] = c_f[c]
-                out_cd[k, c] = c_d[c]
                 dd1 = 0.0
                 for i in range(n):
                     dd1 += c_B[c, i] * v[i]
+                # the law's force at the recorded state; the Hertz laws' step force differs
+                # from it by the discrete gradient's O(Δδ²) trapezoidal defect
+                out_cf[k, c] = c_f[c]
+                if c_closed[c] and (c_code[c] == JANKOWSKI or c_code[c] == HERTZDAMP):
+                    out_cf[k, c] = contact_force(c_code[c], c_P[c], c_H[c], c_d[c], dd1)[0]
+                out_cd[k, c] = c_d[c]
                 out_cv[k, c] = dd1
                 out_closed[k, c] = c_closed[c]
             stats[S_NOUT] = k + 1
