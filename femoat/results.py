@@ -148,11 +148,9 @@ class RunResult:
             closed = self.contact_closed[:, c].astype(bool)
             f = self.contact_force[:, c]
             starts = np.flatnonzero(closed & ~np.r_[False, closed[:-1]])
-            for s in starts:
-                e = s + 1
-                while e < t.size and closed[e]:
-                    e += 1
-                e = min(e, t.size - 1)
+            # first sample after each closed run (the located separation), or the last sample
+            ends = np.minimum(np.flatnonzero(closed & ~np.r_[closed[1:], False]) + 1, t.size - 1)
+            for s, e in zip(starts, ends):
                 seg = slice(s, e + 1)
                 fs = f[seg]
                 k = s + int(np.argmax(fs))

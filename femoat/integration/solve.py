@@ -37,7 +37,7 @@ CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-          chunks=20, lazy=True, channels=CHANNELS, backend="auto"):
+          chunks=None, lazy=True, channels=CHANNELS, backend="auto"):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -150,6 +150,9 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     state_t, h_state, pn_state = np.zeros(1), np.array([fopt[kn.F_HMAX]]), np.array([ag0])
 
     cpu0 = _time.process_time()
+    # with a progress display the loop returns 20 times to report; without, it runs through
+    if chunks is None:
+        chunks = 20 if progress is not None else 1
     targets = np.linspace(0, duration, chunks + 1)[1:]
     k = 0
     while True:
