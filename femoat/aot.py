@@ -10,7 +10,7 @@ JIT kernels (the same LLVM code).
 * The module is keyed by a hash of every kernel source file, the Python and numba versions and
   the platform, so an edit or an upgrade makes femoat use the JIT again until it is rebuilt.
 * ``femoat paper`` and ``femoat run`` build it once at the end of a run when it is missing (about
-  20 s; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
+  25 s; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
   them femoat keeps using the JIT.
 * ``FEMOAT_AOT=0`` switches it off (load nothing, build nothing); the cache folder is
   ``$FEMOAT_CACHE`` or ``~/.cache/femoat`` (``FEMOAT_CACHE=off`` also switches it off).
@@ -30,12 +30,13 @@ import tempfile
 from importlib import metadata
 from pathlib import Path
 
+from femoat.jit import OPTIONS
+
 MODULE = "femoat_aot_kernels"
 EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
            "material_recoverable_energy", "contact_stored_energy")
 """The functions the building solver calls from Python (:mod:`femoat.integration.solve`)."""
 
-OPTIONS_NO_NRT = True  # as femoat.jit.OPTIONS: no kernel allocates
 _ROOT = Path(__file__).resolve().parent
 _SOURCES = ("jit.py", "contact/kernels.py", "integration/kernel.py", "structure/materials")
 _loaded = {}
@@ -69,7 +70,7 @@ def _key(root):
     except metadata.PackageNotFoundError:
         numba_version = "none"
     h.update(f"{sys.implementation.cache_tag} numba {numba_version} {sys.platform} "
-             f"{platform.machine()} nrt={not OPTIONS_NO_NRT}".encode())
+             f"{platform.machine()} {sorted(OPTIONS.items())}".encode())
     return h.hexdigest()[:16]
 
 
@@ -120,7 +121,7 @@ def build(force=False):
             cc = CC(MODULE)
             cc.output_dir = str(work)
             cc.output_file = path.name
-            cc.use_nrt = not OPTIONS_NO_NRT
+            cc.use_nrt = OPTIONS.get("_nrt", True)  # the kernels' own compile options
             for name, (kernel, sig) in signatures.items():
                 cc.export(name, sig)(kernel.py_func)
             try:
@@ -141,7 +142,7 @@ def ensure(report=print):
     if not enabled() or module_path().is_file():
         return None
     report("femoat: compiling the solver ahead of time so that later runs start fast (once; "
-           "about 20 s; FEMOAT_AOT=0 skips this)")
+           "about 25 s; FEMOAT_AOT=0 skips this)")
     try:
         path = build()
     except Exception as err:  # a missing compiler must not fail the user's run
