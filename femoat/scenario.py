@@ -63,7 +63,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from femoat.contact.laws import make_law
-from femoat.impact.calibration import calibrate as calibrate_law
 from femoat.integration.settings import Integrator
 from femoat.structure.building import Building
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
@@ -142,6 +141,8 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
     preset = wall_preset(d.get("preset", "concrete"), damping=d.get("damping", "published"))
     law = make_law(d.get("law", "H"), preset.contact)
     if d.get("calibrate", False) and law.kind != "E":
+        from femoat.impact.calibration import calibrate as calibrate_law  # scipy.integrate: 1 s
+
         law = calibrate_law(law, float(d.get("calibrate_v0", 10.0)))
     gap = float(d.get("gap", 4.0))
     sides = {"both": (1, -1), "pos": (1,), "neg": (-1,), "none": ()}.get(d.get("sides", "both"))

@@ -2,7 +2,6 @@
 
 from pathlib import Path
 
-from femoat.impact.study import impact_all_laws
 from femoat.walls.presets import DAMPING_CHOICES, PRESETS
 
 
@@ -28,6 +27,8 @@ def add_parser(sub):
 
 
 def run(args):
+    from femoat.impact.study import impact_all_laws  # scipy.integrate: imported when used
+
     from femoat.plotting.contact_curves import plot_contact_curves, write_contact_curves_csv
 
     results = impact_all_laws(args.wall, args.v0, rigid=not args.sdof_wall,

@@ -3,8 +3,6 @@
 import json
 
 from femoat.contact.laws import LAW_CODES, make_law
-from femoat.impact.calibration import achieved_restitution, calibrate
-from femoat.impact.single import simulate_impact
 from femoat.walls.presets import DAMPING_CHOICES, PRESETS, wall_preset
 
 
@@ -38,6 +36,9 @@ def add_parser(sub):
 
 
 def run(args):
+    from femoat.impact.calibration import achieved_restitution, calibrate
+    from femoat.impact.single import simulate_impact  # scipy.integrate: imported when used
+
     preset = wall_preset(args.wall, damping=args.damping)
     law = make_law(args.law, preset.contact, allow_tension=args.allow_tension)
     uncalibrated_e = None
