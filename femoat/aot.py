@@ -65,11 +65,13 @@ def _key(root):
         for f in sorted(p.glob("*.py")) if p.is_dir() else [p]:
             h.update(f.relative_to(root).as_posix().encode())
             h.update(f.read_bytes())
-    try:
-        numba_version = metadata.version("numba")
-    except metadata.PackageNotFoundError:
-        numba_version = "none"
-    h.update(f"{sys.implementation.cache_tag} numba {numba_version} {sys.platform} "
+    versions = []
+    for package in ("numba", "numpy"):  # the module links numba's runtime and numpy's C API
+        try:
+            versions.append(f"{package} {metadata.version(package)}")
+        except metadata.PackageNotFoundError:
+            versions.append(f"{package} none")
+    h.update(f"{sys.implementation.cache_tag} {versions} {sys.platform} "
              f"{platform.machine()} {sorted(OPTIONS.items())}".encode())
     return h.hexdigest()[:16]
 
@@ -78,7 +80,10 @@ def load():
     """The compiled module, or None (not built for these sources, switched off, or unloadable)."""
     if not enabled():
         return None
-    path = module_path()
+    try:
+        path = module_path()
+    except Exception:  # e.g. an install without the kernel sources: nothing to key on
+        return None
     if path in _loaded:
         return _loaded[path]
     module = None
@@ -90,7 +95,7 @@ def load():
             loader.exec_module(module)
             if not all(hasattr(module, name) for name in EXPORTS):
                 module = None
-        except ImportError:
+        except Exception:
             module = None  # built for another interpreter or damaged: the JIT is used
     _loaded[path] = module
     return module
@@ -155,6 +160,7 @@ def ensure(report=print):
 def _signatures():
     """{exported name: (Kernel, numba signature)} from a JIT run of a tiny model."""
     import numpy as np
+    from numba.core.types import Literal
 
     from femoat.contact import kernels as contact
     from femoat.integration import kernel as kn
@@ -179,7 +185,11 @@ def _signatures():
             args = {"contact_stored_energy": (0, np.zeros(contact.N_PARAMS),
                                               np.zeros(contact.N_HISTORY), 0.0)}[name]
             d(*args)
-        if len(d.signatures) != 1:
-            raise RuntimeError(f"{name} has {len(d.signatures)} compiled signatures; expected 1")
-        out[name] = (kernel, d.overloads[d.signatures[0]].signature)
+        # the Python-facing signature: kernels compiled as callees inside other kernels may
+        # add variants specialised on literal arguments (want_tangent=True, ...)
+        plain = [s for s in d.signatures if not any(isinstance(t, Literal) for t in s)]
+        if len(plain) != 1:
+            raise RuntimeError(f"{name} has {len(plain)} compiled signatures without literal "
+                               f"arguments ({d.signatures}); expected 1")
+        out[name] = (kernel, d.overloads[plain[0]].signature)
     return out

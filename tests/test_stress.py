@@ -324,16 +324,17 @@ def test_long_chattering_without_loss_keeps_bouncing(kind):
         assert abs(res.energy["contact"]) < _energy_floor(res, law, 1e-4)
 
 
+@pytest.mark.parametrize("rtol", [1e-2, 1e-4])
 @pytest.mark.parametrize("preset", ["concrete", "steel"])
 @pytest.mark.parametrize("kind", ["J", "H"])
-def test_lossless_hertz_chattering_conserves_energy(kind, preset):
+def test_lossless_hertz_chattering_conserves_energy(kind, preset, rtol):
     # e = 1: J and H are the pure Hertz spring k_h·δ^1.5. The trapezoidal rule alone gained
     # 5.4-5.9 % of the input energy over these ~60 impacts at rtol = 1e-4 (measured before the
     # discrete-gradient step force); with it the contact's work over every step is exactly the
     # change of Φ = 0.4·k_h·δ^2.5, so the contact neither gains nor loses: zero to round-off.
     law = make_law(kind, _params(preset, {"e": 1.0}))
-    res = _pushed(law, STIFF_WALL, 1.0, 0.1, 3.0)
-    _check_run(res, law, 1e-4)
+    res = _pushed(law, STIFF_WALL, 1.0, 0.1, 3.0, Integrator(rtol=rtol))
+    _check_run(res, law, rtol)
     assert res.peaks["impacts_pos"] >= 50
     scale = abs(res.energy["initial"]) + abs(res.energy["input"])
     assert abs(res.energy["contact"]) < 1e-10 * scale

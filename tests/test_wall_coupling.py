@@ -97,6 +97,14 @@ def test_automatic_n(concrete):
     assert full.mode_numbers[-1] == -1
 
 
+def test_residual_vector_needs_the_static_deflection(concrete):
+    _, res = concrete
+    bare = dataclasses.replace(res, static_shape=None, model=None)  # e.g. built by hand
+    with pytest.warns(UserWarning, match="residual-flexibility vector is left out"):
+        wall = ModalWall.from_fe(bare, n_modes=3)
+    assert not wall.residual and wall.n_modes == 3
+
+
 def test_residual_flexibility_vector(concrete):
     model, res = concrete
     n = 3

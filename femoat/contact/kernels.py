@@ -112,8 +112,7 @@ def contact_closure(h, v):
     """
     h[0] = v
     h[1] = 0.0
-    h[2] = 0.0
-    h[3] = 0.0
+    h[3] = 0.0  # the Hertz spring starts unloaded; h[2] keeps the committed δ (≤ 0 here)
 
 
 @njit(cache=True)
@@ -199,6 +198,8 @@ def step_force(code, p, h, d, v):
         fe = p[_KH] * d * sd
         kfe = 1.5 * p[_KH] * sd
     g, kg = _hertz_gradient(p[_KH], h[2], h[3], d)
+    if d == h[2]:
+        g = h[3]  # at the committed state itself (a restart): the force the last step ended with
     return f - fe + g, kf - kfe + kg, cf
 
 

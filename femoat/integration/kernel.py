@@ -370,6 +370,9 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 # which is most steps; this saves a third of the work.
                 small = True
                 for i in range(n):
+                    if w_A[i, i] <= 0.0:  # (a softening tangent: no estimate, solve instead)
+                        small = False
+                        break
                     est = 1e4 * abs(w_b[i]) / w_A[i, i]
                     if bh2 * est / scale_contact[i] >= ntol or est >= ntol * 1e2 * (amax + 1.0):
                         small = False

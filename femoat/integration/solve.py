@@ -2,7 +2,7 @@
 
 import math
 import time as _time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -67,6 +67,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
     """
     kern, backend = kernels(backend)
+    packed = _canonical(packed)
     integ = integrator or Integrator()
     ag = np.ascontiguousarray(ag, dtype=float)
     if ag.ndim != 1 or ag.size < 2 or not np.all(np.isfinite(ag)):
@@ -204,6 +205,23 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
+
+
+_INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code")
+_FLOAT_ARRAYS = ("M", "C", "K", "r", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H")
+
+
+def _canonical(packed):
+    """``packed`` with its arrays as the compiled kernels take them: C-contiguous float64, int64
+    codes and indices. (The ahead-of-time module checks only the item size of an argument, so
+    a strided or wrongly typed array would be misread rather than rejected.)"""
+    changes = {}
+    for names, dtype in ((_INT_ARRAYS, np.int64), (_FLOAT_ARRAYS, np.float64)):
+        for name in names:
+            a = getattr(packed, name)
+            if a.dtype != dtype or not a.flags.c_contiguous:
+                changes[name] = np.ascontiguousarray(a, dtype=dtype)
+    return replace(packed, **changes) if changes else packed
 
 
 def kernels(backend="auto"):

@@ -310,7 +310,16 @@ class ModalWall:
         freqs = modes.frequencies[:n]
         shapes = modes.shapes[:, :n]
         fraction = float(flex[n - 1])
-        extra = residual_mode(result, numbers) if residual else None
+        extra = None
+        if residual and result.static_shape is None:
+            import warnings
+
+            warnings.warn("this ModalResult carries no static deflection (built by hand?), so "
+                          "the residual-flexibility vector is left out; run "
+                          "femoat.walls.fe.modal_analysis on the WallModel to include it",
+                          stacklevel=2)
+        elif residual:
+            extra = residual_mode(result, numbers)
         if extra is not None:
             m, k = np.append(m, extra.modal_mass), np.append(k, extra.modal_stiffness)
             ground, freqs = np.append(ground, extra.ground_factor), np.append(freqs, extra.frequency)
