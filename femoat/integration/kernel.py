@@ -571,12 +571,12 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 v_close = max(v_close, dd1)
                 toggled = True
                 stats[S_EVENTS] += 1
-            elif c_closed[c] and w_cd[c] <= gap_tol and dd1 < 0.0 and (landing == c
-                                                                        or w_cd[c] < -gap_tol):
-                # separation: only at the located crossing (the step was shortened onto it) or
-                # once the gap has opened by more than gap_tol. A contact resting within
-                # ±gap_tol of δ = 0 stays closed (it carries no force there) instead of
-                # opening and closing at every step.
+            elif c_closed[c] and landing == c and w_cd[c] <= gap_tol and dd1 < 0.0:
+                # separation only at the located crossing (the step was shortened onto it; a
+                # closed contact whose trial step ends below −gap_tol never gets here, the event
+                # search shortens the step or opens it at the committed state). A contact
+                # resting within ±gap_tol of δ = 0 stays closed (it carries no force there)
+                # instead of opening and closing at every step.
                 c_closed[c] = 0
                 toggled = True
                 stats[S_EVENTS] += 1
