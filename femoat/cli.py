@@ -5,7 +5,8 @@ import importlib
 import sys
 
 # Subcommand modules, each with ``add_parser(subparsers)`` and ``run(args) -> int``.
-COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees", "compile"]
+COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees", "compile",
+            "suite"]
 
 
 def build_parser():

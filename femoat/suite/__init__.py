@@ -1,0 +1,17 @@
+"""Suites of records at scale: IDA and FEMA P695 collapse assessment with pounding (issue 11).
+
+Execution half: a suite file (:mod:`femoat.suite.definition`) defines the model, records,
+variations and scaling; :func:`run_suite` runs it in-process or on a Dask cluster
+(:mod:`femoat.suite.execute`) into a folder of Parquet parts (:mod:`femoat.suite.table`), read
+back with :func:`load_table`. Modules, one concept each: ``records``, ``variations``,
+``scaling``, ``huntfill``, ``model``, ``runs``, ``table``, ``export``, ``progress``,
+``execute``. Nothing heavy is imported here.
+"""
+
+from femoat.suite.definition import load_suite, suite_from_dict
+from femoat.suite.execute import run_suite
+from femoat.suite.export import to_demand_csv, to_xarray
+from femoat.suite.table import load_table
+
+__all__ = ["load_suite", "load_table", "run_suite", "suite_from_dict", "to_demand_csv",
+           "to_xarray"]

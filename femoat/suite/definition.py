@@ -1,0 +1,186 @@
+"""Suite files: a model, a set of records, variations and a scaling method, in one TOML file.
+
+Everything is validated when the file is read, before any run starts: every record is loaded
+and checked, every variation's model is built once, every intensity is checked. Errors name the
+key or the file and say what to use instead. Unknown keys are rejected by name. ::
+
+    # The model: exactly the tables of a scenario file (see femoat.scenario)
+    [building]                    # plus story_heights [in], p_delta, isolator_capacity [in]
+    story_model = "imk"
+    [walls]
+    preset = "concrete"
+    [solver]
+    rtol = 1e-4
+
+    [collapse]                    # femoat.collapse.CollapseCriteria
+    drift_ratio = 0.10            # [-] story drift / story height
+    isolator = true               # collapse at the isolator capacity ([building])
+    wall_displacement = 2.0       # [in] (omit: not a criterion)
+    wall_force = 500.0            # [kip] (omit: not a criterion)
+
+    [records]                     # exactly one of set / folder / glob / files
+    set = "farfield"              # FEMA P695: "farfield" (22 x 2), "nearfield_pulse" (14 x 2),
+                                  # "nearfield_no_pulse" (14 x 2), "nearfield" (both, 28 x 2)
+    components = ["a", "b"]       # set only (default both)
+    ids = [1, 2, 3]               # set only: a subset of record IDs (default all)
+    # folder = "records"          # every *.AT2 in it (relative to this file)
+    # glob = "records/RSN*.AT2"
+    # files = ["a.AT2", "b.AT2"]
+    time_scale = 0.5              # similitude factor on time (default 0.5, the quarter-scale
+                                  # paper building); periods in [scaling] are PROTOTYPE periods
+    duration = 20.0               # [s] keep only the first 20 s of each record (default: all)
+    extra_time = 2.0              # [s] free vibration after the record (model time; default 2)
+
+    [variations]                  # dotted scenario keys, each a list; cartesian product
+    "walls.law" = ["E", "V", "J", "H", "M"]
+    "walls.preset" = ["concrete", "steel"]
+
+    [scaling]                     # see femoat.suite.scaling
+    method = "ida"                # "p695" | "ida" | "pga"
+    im = "sa"                     # ida: "sa" (Sa(T), 5 %) or "pga"
+    period = 3.5                  # [s] prototype period T for Sa(T) and S_MT
+    levels = [0.2, 0.4]           # ida: fixed stripes [g] ...
+    # hunt_fill = true            # ... or hunt-and-fill: step0, step_increment, resolution [g],
+    # step0 = 0.1                 #     max_runs
+    # sdc = "Dmax"; multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT)
+    # targets = [0.3, 0.6]        # pga: PGA [g]
+
+    [run]                         # how, not what: none of these changes a result
+    batch_size = 24               # runs per task (default: ~0.5 s of runs, >= 4 tasks/worker)
+    histories = ["<run_id>"]      # runs whose full history is saved (DIR/histories/<id>.npz)
+    stop_on_collapse = true       # stop a run at collapse (default for [collapse] stop)
+    solver_failure = "separate"   # how the report counts solver failures: "separate" |
+                                  # "collapse" | "exclude" (stored in suite.json)
+
+The suite hash covers everything that changes a result (model, records and their samples,
+variations, scaling, durations, femoat's version), not the ``[run]`` keys except
+``stop_on_collapse``.
+"""
+
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from femoat.suite import records as rec
+from femoat.suite import scaling as sc
+from femoat.suite import variations as var
+
+TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run"}
+RUN_KEYS = {"batch_size", "histories", "stop_on_collapse", "solver_failure"}
+FAILURE_POLICIES = ("separate", "collapse", "exclude")
+HEADLINE = Path(__file__).with_name("headline.toml")
+
+
+@dataclass(frozen=True)
+class Suite:
+    """A validated suite definition (see the module docstring for the file format)."""
+
+    source: dict  # the parsed TOML
+    base_dir: str  # folder of the suite file (relative paths of [walls.fe])
+    tables: dict  # model tables: building, walls, solver, collapse
+    records: tuple  # RecordRef
+    time_scale: float
+    duration: float | None  # [s] of each published record used
+    extra_time: float  # [s]
+    varied: tuple  # dotted keys
+    combos: tuple  # one dict per variation
+    scaling: sc.Scaling
+    batch_size: int | None
+    histories: tuple
+    stop_on_collapse: bool
+    solver_failure: str
+    n_stories: int
+    hash: str = field(default="")
+
+    def metadata(self):
+        """suite.json: the definition, its hash and what the report needs."""
+        from femoat import __version__
+
+        s = self.scaling
+        return dict(suite_hash=self.hash, femoat_version=__version__, definition=self.source,
+                    varied_keys=list(self.varied), variations=list(self.combos),
+                    n_records=len(self.records), n_stories=self.n_stories,
+                    time_scale=self.time_scale,
+                    time_scale_note="periods are prototype periods; the model period is "
+                    "period x time_scale",
+                    period=s.period, smt=s.smt, sdc=s.sdc, scaling=s.summary(),
+                    solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse)
+
+
+def load_suite(path=None):
+    """Read and validate a suite file (the headline suite when ``path`` is None)."""
+    path = Path(path) if path is not None else HEADLINE
+    if not path.is_file():
+        raise FileNotFoundError(f"suite file {path} does not exist.")
+    try:
+        d = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML ({exc}).") from None
+    return suite_from_dict(d, path.resolve().parent)
+
+
+def suite_from_dict(d, base_dir=Path(".")):
+    """Validate a parsed suite document; returns a :class:`Suite`."""
+    from femoat import __version__
+    from femoat.scenario import _check_keys
+    from femoat.suite.model import build_model
+
+    _check_keys(d, TABLES, "suite")
+    run = dict(d.get("run", {}))
+    _check_keys(run, RUN_KEYS, "[run]")
+    policy = run.get("solver_failure", "separate")
+    if policy not in FAILURE_POLICIES:
+        raise ValueError(f"[run] solver_failure = {policy!r}: use one of {list(FAILURE_POLICIES)}.")
+    batch = run.get("batch_size")
+    if batch is not None and (isinstance(batch, bool) or not isinstance(batch, int) or batch < 1):
+        raise ValueError(f"[run] batch_size = {batch!r} must be a whole number >= 1.")
+    histories = run.get("histories", [])
+    if not isinstance(histories, list) or not all(isinstance(h, str) for h in histories):
+        raise ValueError("[run] histories must be a list of run_id strings.")
+    stop = bool(run.get("stop_on_collapse", True))
+
+    rd = dict(d.get("records", {}))
+    if not rd:
+        raise ValueError("suite: [records] is missing; e.g. set = 'farfield' or folder = 'dir'.")
+    time_scale = _number(rd, "time_scale", 0.5, "[records]")
+    duration = _number(rd, "duration", None, "[records]")
+    extra_time = _number(rd, "extra_time", 2.0, "[records]", zero=True)
+    refs = tuple(rec.records_from_dict({k: v for k, v in rd.items()
+                                        if k not in ("time_scale", "duration", "extra_time")},
+                                       base_dir))
+
+    tables = {k: d[k] for k in var.MODEL_TABLES if k in d}
+    varied, combos = var.variations_from_dict(d.get("variations", {}))
+    n_stories = 0
+    for combo in combos:
+        try:
+            m = build_model(var.apply(tables, combo), stop, base_dir)
+        except (ValueError, TypeError) as exc:
+            where = f"variation {var.label(combo)}" if combo else "model"
+            raise ValueError(f"suite {where}: {exc}") from None
+        n_stories = max(n_stories, len(m.story_heights))
+    scaling = sc.scaling_from_dict(d.get("scaling", {}), refs, time_scale, duration)
+    suite = Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
+                  tuple(varied), tuple(combos), scaling, batch, tuple(histories), stop, policy,
+                  n_stories)
+    key = dict(model=tables, records=[(r.label, r.digest) for r in refs],
+               time_scale=time_scale, duration=duration, extra_time=extra_time,
+               variations=d.get("variations", {}), scaling=d.get("scaling", {}),
+               stop_on_collapse=stop, femoat=__version__)
+    digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
+    object.__setattr__(suite, "hash", digest[:16])
+    return suite
+
+
+def _number(d, key, default, where, zero=False):
+    value = d.get(key, default)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or value < 0 or (value == 0 and not zero):
+        raise ValueError(f"{where} {key} = {value!r} must be a {'non-negative' if zero else 'positive'} "
+                         "number.")
+    return float(value)

@@ -1,0 +1,192 @@
+"""Run a suite: in-process, on a local Dask cluster, or on an existing one; resumable.
+
+* The output folder holds ``suite.json`` (the definition and its hash), ``runs/part-*.parquet``
+  (one part per finished batch) and ``histories/`` (the runs ``[run] histories`` asks for).
+* **Resume**: rerunning the same suite into the same folder skips every run already stored.
+  A folder holding another suite (a different hash: the definition, its records or femoat's
+  version changed) is refused, so old and new rows never mix: choose another ``--out`` or pass
+  ``--overwrite`` to delete the old results.
+* Runs go to workers in batches (``[run] batch_size``); a hunt-and-fill trace is one task (it is
+  sequential). Each finished task's rows are written at once, so an interruption (Ctrl-C, a
+  killed worker or client) loses at most the tasks in flight.
+* Workers use the ahead-of-time kernels (:mod:`femoat.aot`), built once in the client if
+  missing (about 25 s, once per machine); without them they fall back to numba's JIT.
+* On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
+  path (their samples are checked against the definition).
+"""
+
+import json
+import math
+import shutil
+import sys
+from pathlib import Path
+
+from femoat.suite import runs as rn
+from femoat.suite import table as tb
+from femoat.suite.huntfill import hunt_fill
+from femoat.suite.progress import Progress
+
+
+class _Incomplete(Exception):
+    pass
+
+
+def prepare(suite, out, overwrite=False):
+    """Create or check the output folder ``out`` for ``suite``; write suite.json atomically."""
+    from femoat.atomic import write_text
+
+    out = Path(out)
+    meta_path = out / "suite.json"
+    if meta_path.is_file():
+        old = json.loads(meta_path.read_text(encoding="utf-8")).get("suite_hash")
+        if old != suite.hash:
+            if not overwrite:
+                raise ValueError(
+                    f"{out} holds the results of another suite (hash {old}; this one is "
+                    f"{suite.hash}: the definition, its records or femoat changed). Use --out "
+                    "with a new folder, or --overwrite to delete the old results.")
+            for sub in ("runs", "histories"):
+                shutil.rmtree(out / sub, ignore_errors=True)
+    elif (out / "runs").is_dir() and any((out / "runs").iterdir()) and not overwrite:
+        raise ValueError(f"{out}/runs holds files but no suite.json; use another --out or "
+                         "--overwrite.")
+    write_text(meta_path, json.dumps(suite.metadata(), indent=1, default=str) + "\n")
+
+
+def pending(suite, out):
+    """The work left: ("batch", specs) tasks or ("trace", rec, var, stored) tasks."""
+    stored = tb.stored_runs(out)
+    if suite.scaling.hunt is None:
+        todo = [s for s in rn.plan(suite) if s.run_id not in stored]
+        size = suite.batch_size or default_batch_size(len(todo))
+        return [("batch", todo[i:i + size]) for i in range(0, len(todo), size)], len(todo)
+    by_trace = {}
+    for rid, (rec, v, failed) in stored.items():
+        by_trace.setdefault(f"{rec}|{v}", {})[rid] = failed
+    tasks = []
+    for r, v in rn.traces(suite):
+        mine = by_trace.get(rn.trace_label(suite, r, v), {})
+        if not _trace_complete(suite, r, v, mine):
+            tasks.append(("trace", r, v, mine))
+    return tasks, len(tasks)
+
+
+def _trace_complete(suite, r, v, stored):
+    def oracle(im):
+        rid = rn.run_id(suite, r, v, im)
+        if rid not in stored:
+            raise _Incomplete
+        return stored[rid]
+
+    try:
+        hunt_fill(oracle, **suite.scaling.hunt)
+    except _Incomplete:
+        return False
+    return True
+
+
+def default_batch_size(n_runs, workers=2):
+    """About 0.5 s of paper-sized runs (~20 ms each) per task, and >= 4 tasks per worker."""
+    return max(1, min(24, math.ceil(n_runs / (4 * workers))))
+
+
+def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, serial=False,
+              overwrite=False, stream=None):
+    """Run what is left of ``suite`` into ``out``; return a summary dict.
+
+    workers : int or None  local worker processes (default: one per core), single-threaded
+    scheduler / scheduler_file : address or file of an existing Dask scheduler
+    serial : bool  run in this process (no Dask)
+    """
+    stream = stream or sys.stderr
+    out = Path(out)
+    prepare(suite, out, overwrite)
+    tasks, total = pending(suite, out)
+    unit = "runs" if suite.scaling.hunt is None else "traces"
+    summary = dict(out=str(out), suite_hash=suite.hash, todo=total, unit=unit, runs=0,
+                   collapses=0, failures=0, failed_tasks=0, kernels=_kernels(stream))
+    if not tasks:
+        stream.write(f"femoat suite: nothing to do, every run is stored in {out}\n")
+        return summary
+    progress = Progress(total, unit, stream)
+    try:
+        if serial:
+            for task in tasks:
+                _finish(suite, out, task, _call(suite, task, out), progress)
+        else:
+            _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file)
+    finally:
+        progress.close()
+    summary.update(runs=progress.runs, collapses=progress.collapses, failures=progress.failures,
+                   seconds=progress.line())
+    return summary
+
+
+def _kernels(stream):
+    """Build the ahead-of-time kernels once (client side) if missing; say which are used."""
+    from femoat import aot
+
+    aot.ensure(report=lambda m: stream.write(m + "\n"))
+    if aot.load() is not None:
+        return "aot"
+    stream.write("femoat suite: using numba's JIT kernels (the ahead-of-time module is switched "
+                 "off or could not be built): each worker compiles or loads them once\n")
+    return "jit"
+
+
+def _call(suite, task, out):
+    if task[0] == "batch":
+        return rn.run_batch(suite, task[1], out)
+    return rn.run_trace(suite, task[1], task[2], task[3], out)
+
+
+def _finish(suite, out, task, rows, progress):
+    if rows:
+        tb.write_part(rows, suite, out)
+    progress.update(rows, units=len(task[1]) if task[0] == "batch" else 1)
+
+
+def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file):
+    import logging
+
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if scheduler:
+        client = Client(scheduler)
+    elif scheduler_file:
+        client = Client(scheduler_file=str(scheduler_file))
+    else:
+        import os
+
+        n = workers or os.cpu_count() or 1
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.ERROR)
+        client = Client(cluster)
+    futures = {}
+    try:
+        shared = client.scatter(suite, broadcast=True)
+        absolute = str(Path(out).resolve())
+        for task in tasks:
+            if task[0] == "batch":
+                f = client.submit(rn.run_batch, shared, task[1], absolute, pure=False)
+            else:
+                f = client.submit(rn.run_trace, shared, task[1], task[2], task[3], absolute,
+                                  pure=False)
+            futures[f] = task
+        for f in as_completed(futures):
+            task = futures[f]
+            try:
+                rows = f.result()
+            except Exception as exc:  # noqa: BLE001 - e.g. a worker killed too often
+                summary["failed_tasks"] += 1
+                progress.stream.write(f"\nfemoat suite: a task failed ({type(exc).__name__}: "
+                                      f"{exc}); its runs are not stored: rerun to retry them\n")
+                continue
+            _finish(suite, out, task, rows, progress)
+    finally:
+        for f in futures:
+            f.cancel()
+        client.close()
+        if cluster is not None:
+            cluster.close()

@@ -1,0 +1,63 @@
+"""The results table in other shapes: an xarray Dataset of peaks, a pelicun demand file."""
+
+
+from femoat.suite.table import PEAKS, TAIL
+
+_ID = ["record", "im", "variation"]
+
+
+def to_xarray(df):
+    """Peaks as an ``xarray.Dataset`` with dims (record, intensity, variation).
+
+    ``record`` is the record label (e.g. ``farfield/3b``), ``intensity`` the im [g] (kind in the
+    ``im_kind`` attribute), ``variation`` the variation label; runs absent from the table
+    (hunt-and-fill traces at other intensities) are NaN. Every numeric outcome column becomes a
+    variable; ``status`` is kept as text.
+    """
+    import numpy as np
+
+    keep = [c for c in df.columns if c.startswith(("peak_", "collapse_", "impacts_"))
+            or c in {n for n, _ in PEAKS + TAIL} | {"collapsed", "scale_factor", "sa_t", "pga",
+                                                     "status"}]
+    frame = df[_ID + keep].copy()
+    for c in keep:
+        if frame[c].dtype == bool or str(frame[c].dtype) == "boolean":
+            frame[c] = frame[c].astype(float)
+    ds = frame.set_index(_ID).to_xarray().rename(im="intensity")
+    ds.attrs.update(im_kind=str(df["im_kind"].iloc[0]) if len(df) else "",
+                    units="forces kip, displacements in, accelerations and im g, times s")
+    for c in ds.data_vars:
+        if ds[c].dtype == object and c != "status":
+            ds[c] = ds[c].astype(np.float64)
+    return ds
+
+
+def to_demand_csv(df, path, n_stories=None):
+    """Write a pelicun demand sample (one row per run of ``df``) to ``path``.
+
+    Columns ``type-location-direction`` as pelicun reads them: ``PFA-0-1`` the base mat's peak
+    absolute acceleration (the level at grade, above the isolators), ``PFA-k-1`` floor k [g],
+    ``PID-k-1`` the peak drift ratio of story k [rad], and ``PGA-0-1`` [g] of the record as
+    applied. The second row holds the units (``Units,g,...,rad``); the index is the run_id.
+    Filter ``df`` to one stripe (intensity, variation) first: pelicun reads one sample per
+    hazard level.
+    """
+    import pandas as pd
+
+    from femoat.atomic import atomic_path
+
+    if n_stories is None:
+        n_stories = max((int(c.rsplit("_", 1)[1]) for c in df.columns
+                         if c.startswith("peak_drift_ratio_")), default=0)
+    cols, units = {"PGA-0-1": df["pga"]}, {"PGA-0-1": "g"}
+    cols["PFA-0-1"], units["PFA-0-1"] = df["peak_base_acceleration"], "g"
+    for k in range(1, n_stories + 1):
+        cols[f"PFA-{k}-1"], units[f"PFA-{k}-1"] = df[f"peak_floor_acceleration_{k}"], "g"
+    for k in range(1, n_stories + 1):
+        cols[f"PID-{k}-1"], units[f"PID-{k}-1"] = df[f"peak_drift_ratio_{k}"], "rad"
+    demand = pd.DataFrame(cols)
+    demand.index = df["run_id"].to_numpy()
+    table = pd.concat([pd.DataFrame([units], index=["Units"]), demand.astype(object)])
+    with atomic_path(path) as tmp:
+        table.to_csv(tmp)
+    return path

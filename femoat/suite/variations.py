@@ -1,0 +1,64 @@
+"""``[variations]``: scenario keys in dotted form, each with a list, run as a cartesian product.
+
+``"walls.law" = ["E", "V"]`` and ``"walls.gap" = [3, 4]`` make four variations. A key is
+``table.key`` or ``table.subtable.key`` of the model tables of a scenario file (``building``,
+``building.story``, ``building.isolator``, ``walls``, ``walls.fe``, ``solver``, ``collapse``);
+anything else is rejected by name before any run starts.
+"""
+
+import copy
+import dataclasses
+import itertools
+
+MODEL_TABLES = ("building", "walls", "solver", "collapse")
+
+
+def allowed_keys():
+    """{table path: allowed keys} of the model tables (from femoat.scenario and the materials)."""
+    from femoat import scenario
+    from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+    from femoat.suite.model import building_keys, collapse_keys
+
+    known = {k: set(v) for k, v in scenario._KNOWN.items() if k.split(".")[0] in MODEL_TABLES}
+    known["building"] = building_keys()
+    known["building.story"] = {f.name for m in (Elastic, Bilinear, IMKBilinear)
+                               for f in dataclasses.fields(m)} | {"k0"}
+    known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}
+    known["collapse"] = collapse_keys()
+    return known
+
+
+def variations_from_dict(d):
+    """``(keys, combos)``: the varied dotted keys in file order and one dict per combination."""
+    known = allowed_keys()
+    keys = list(d)
+    for key in keys:
+        table, _, leaf = key.rpartition(".")
+        if table not in known or leaf not in known[table]:
+            raise ValueError(
+                f"[variations] {key!r} is not a scenario key; use 'table.key' with table in "
+                f"{sorted(known)} (e.g. 'walls.law', 'walls.gap', 'building.story.Fy').")
+        values = d[key]
+        if not isinstance(values, list) or not values:
+            raise ValueError(f"[variations] {key!r} = {values!r}: give a non-empty list of values.")
+        if len({repr(v) for v in values}) != len(values):
+            raise ValueError(f"[variations] {key!r} lists a value twice: {values!r}.")
+    combos = [dict(zip(keys, vals)) for vals in itertools.product(*(d[k] for k in keys))]
+    return keys, combos
+
+
+def apply(tables, combo):
+    """A deep copy of the model ``tables`` ({'building': {...}, ...}) with ``combo`` set in."""
+    out = copy.deepcopy(tables)
+    for key, value in combo.items():
+        *path, leaf = key.split(".")
+        node = out
+        for part in path:
+            node = node.setdefault(part, {})
+        node[leaf] = value
+    return out
+
+
+def label(combo):
+    """A short text label, e.g. ``walls.law=E, walls.preset=steel`` (``base`` when empty)."""
+    return ", ".join(f"{k}={v}" for k, v in combo.items()) or "base"
