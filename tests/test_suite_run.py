@@ -1,0 +1,177 @@
+"""Running suites: same numbers as run(), failures stored, resume after a kill, exports."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from femoat.suite import load_suite, load_table, run_suite, to_demand_csv, to_xarray
+
+PEER = Path(__file__).parent / "data" / "peer"
+ROOT = Path(__file__).resolve().parents[1]
+
+SMALL = """
+[records]
+folder = "{folder}"
+duration = {duration}
+extra_time = 0.5
+[variations]
+"walls.law" = ["E", "H"]
+[scaling]
+method = "ida"
+period = 1.0
+levels = [0.5, 1.5]
+[run]
+batch_size = {batch}
+"""
+
+
+def _suite(tmp_path, text=SMALL, duration=3.0, batch=3, name="suite.toml"):
+    path = tmp_path / name
+    path.write_text(text.format(folder=PEER.as_posix(), duration=duration, batch=batch),
+                    encoding="utf-8")
+    return path
+
+
+def _quiet():
+    import io
+
+    return io.StringIO()
+
+
+def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
+    from femoat.ground_motions import GroundMotion, read_at2, response_spectrum
+    from femoat.run import run
+    from femoat.scenario import building_from_dict, walls_from_dict
+    from femoat.structure.pounding import PoundingModel
+    from femoat.units import G
+
+    suite = load_suite(_suite(tmp_path))
+    run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    df = load_table(tmp_path / "out")
+    # 3 records x 2 laws x 2 levels, each stored once
+    assert len(df) == 12 and df["run_id"].is_unique and set(df["status"]) <= {"ok", "collapsed"}
+    row = df[(df["record"] == "Rinaldi228") & (df["walls.law"] == "H") & (df["im"] == 1.5)]
+    row = row.iloc[0]
+    # the same run by hand: first 3 s of the published record (301 samples at 0.01 s),
+    # scaled so that Sa(T = 0.5 s) of the time-scaled record (= Sa(1 s) unscaled) is 1.5 g
+    gm = read_at2(PEER / "Rinaldi228.AT2")
+    gm = GroundMotion(gm.accel_g[:301], gm.dt, gm.name)
+    factor = 1.5 / float(response_spectrum(gm.time_scaled(0.5), 0.5, 0.05).psa)
+    assert row["scale_factor"] == factor
+    building = building_from_dict({})
+    model = PoundingModel(building, walls_from_dict({"law": "H"}, base_mass=building.base_weight / G))
+    ref = run(model, gm.scaled(factor).time_scaled(0.5), extra_time=0.5)
+    p = ref.peaks
+    assert row["peak_impact_force_pos"] == p["peak_impact_force_pos"]
+    assert row["peak_impact_force_neg"] == p["peak_impact_force_neg"]
+    assert row["peak_base_displacement"] == p["peak_base_displacement"]
+    assert row["peak_drift_1"] == p["peak_drift"][0]
+    assert row["peak_floor_acceleration_3"] == p["peak_floor_acceleration"][2]
+    assert row["steps"] == p["steps"]
+    assert row["sa_t"] == pytest.approx(1.5, rel=1e-12)
+    assert row["pga"] == pytest.approx(gm.pga * factor, rel=1e-12)
+    # drift ratio = drift / 39 in (default story height)
+    assert row["peak_drift_ratio_1"] == pytest.approx(p["peak_drift"][0] / 39.0, rel=1e-15)
+
+    # exports: an xarray Dataset record x intensity x variation, a pelicun demand file
+    ds = to_xarray(df)
+    assert dict(ds.sizes) == {"record": 3, "intensity": 2, "variation": 2}
+    assert float(ds["peak_base_displacement"].sel(record="Rinaldi228", intensity=1.5,
+                                                  variation="walls.law=H")) == \
+        row["peak_base_displacement"]
+    to_demand_csv(df, tmp_path / "demand.csv")
+    demand = pd.read_csv(tmp_path / "demand.csv", index_col=0)
+    assert demand.loc["Units", "PID-1-1"] == "rad" and demand.loc["Units", "PFA-3-1"] == "g"
+    assert float(demand.loc[row["run_id"], "PID-1-1"]) == pytest.approx(
+        row["peak_drift_ratio_1"], rel=1e-12)
+
+
+def test_a_run_that_cannot_converge_is_stored_and_the_suite_goes_on(tmp_path):
+    # max_newton = 2 with min_step = 0.004 s cannot converge once the ground shakes hard
+    text = SMALL.replace('"walls.law" = ["E", "H"]', '"solver.max_newton" = [30, 2]') + \
+        "[solver]\nmin_step = 0.004\n"
+    suite = load_suite(_suite(tmp_path, text))
+    summary = run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    df = load_table(tmp_path / "out")
+    assert len(df) == 12 and summary["failed_tasks"] == 0
+    bad = df[df["solver.max_newton"] == 2]
+    good = df[df["solver.max_newton"] == 30]
+    assert set(good["status"]) <= {"ok", "collapsed"}
+    assert "solver_failure" in set(bad["status"])
+    for _, r in bad[bad["status"] == "solver_failure"].iterrows():
+        assert r["error"].startswith(f"run {r['run_id']} (")  # the error names its run
+        assert "could not converge" in r["error"]
+        assert not r["collapsed"] and np.isnan(r["peak_base_displacement"])
+
+
+def _cli(args, **kw):
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    return subprocess.Popen([sys.executable, "-m", "femoat.cli", "suite", *map(str, args)],
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)
+
+
+def test_resume_after_a_killed_suite_equals_an_uninterrupted_run(tmp_path):
+    # full records (20-40 s, ~20-50 ms per run), one run per part: time to kill it half-way
+    path = _suite(tmp_path, SMALL.replace("duration = {duration}\n", ""), batch=1)
+    out = tmp_path / "killed"
+    proc = _cli([path, "--serial", "--out", out])
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if len(list(out.glob("runs/part-*.parquet"))) >= 2:
+            break
+        time.sleep(0.005)
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate()
+    done = len(list((out / "runs").glob("part-*.parquet")))
+    if done >= 12:
+        pytest.skip("the suite finished before it could be killed (machine too fast)")
+    assert done >= 2
+    rerun = _cli([path, "--serial", "--out", out])
+    _, err = rerun.communicate(timeout=300)
+    assert rerun.returncode == 0, err.decode()
+    resumed = load_table(out).sort_values("run_id").reset_index(drop=True)
+    suite = load_suite(path)
+    run_suite(suite, tmp_path / "whole", serial=True, stream=_quiet())
+    whole = load_table(tmp_path / "whole").sort_values("run_id").reset_index(drop=True)
+    # no duplicates, no missing run_ids, and the same numbers (timings aside)
+    assert resumed["run_id"].is_unique and len(resumed) == 12
+    assert list(resumed["run_id"]) == list(whole["run_id"])
+    timing = ["cpu_seconds", "solver_seconds"]
+    pd.testing.assert_frame_equal(resumed.drop(columns=timing), whole.drop(columns=timing))
+    # a third run has nothing left to do
+    assert run_suite(suite, out, serial=True, stream=_quiet())["todo"] == 0
+
+
+def test_a_changed_suite_never_mixes_with_old_rows(tmp_path):
+    suite = load_suite(_suite(tmp_path, duration=1.0))
+    run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    changed = load_suite(_suite(tmp_path, SMALL.replace("[0.5, 1.5]", "[0.5, 1.0]"),
+                                duration=1.0))
+    with pytest.raises(ValueError, match="--overwrite"):
+        run_suite(changed, tmp_path / "out", serial=True, stream=_quiet())
+    run_suite(changed, tmp_path / "out", serial=True, overwrite=True, stream=_quiet())
+    df = load_table(tmp_path / "out")
+    assert set(df["suite_hash"]) == {changed.hash} and set(df["im"]) == {0.5, 1.0}
+
+
+def test_hunt_and_fill_suite_resumes_its_traces(tmp_path):
+    text = SMALL.replace("levels = [0.5, 1.5]", "hunt_fill = true\nstep0 = 1.0\n"
+                         "step_increment = 1.0\nresolution = 0.5\nmax_runs = 4") + \
+        "[collapse]\ndrift_ratio = 0.02\n"
+    suite = load_suite(_suite(tmp_path, text.replace('"walls.law" = ["E", "H"]',
+                                                     '"walls.law" = ["H"]'), duration=2.0))
+    summary = run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    df = load_table(tmp_path / "out")
+    assert summary["unit"] == "traces" and len(df) == summary["runs"]
+    assert df["collapsed"].any()  # 2 % drift is reached within 4 runs by some record
+    # every trace is at most max_runs long and starts at step0
+    assert df.groupby("record").size().max() <= 4 and (df["im"] == 1.0).sum() == 3
+    again = run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    assert again["todo"] == 0
