@@ -1,0 +1,79 @@
+"""A suite on a real multi-process Dask cluster: a scheduler and two single-threaded workers
+started here on 127.0.0.1 with the ``dask`` command line, connected to by address."""
+
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from femoat.suite import load_suite, load_table, run_suite
+
+ROOT = Path(__file__).resolve().parents[1]
+PEER = Path(__file__).parent / "data" / "peer"
+
+pytestmark = pytest.mark.skipif(shutil.which("dask") is None,
+                                reason="the dask command line (dask[distributed]) is missing")
+
+SUITE = f"""
+[records]
+folder = "{PEER.as_posix()}"
+duration = 3.0
+extra_time = 0.5
+[variations]
+"walls.law" = ["E", "H"]
+[scaling]
+method = "pga"
+targets = [0.3, 0.9]
+[run]
+batch_size = 2
+"""
+
+
+@pytest.fixture
+def cluster(tmp_path):
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    file = tmp_path / "scheduler.json"
+    procs = [subprocess.Popen(["dask", "scheduler", "--host", "127.0.0.1", "--port", "0",
+                               "--no-dashboard", "--scheduler-file", str(file)], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.monotonic() + 60
+        while not file.is_file() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = json.loads(file.read_text())["address"]
+        for _ in range(2):
+            procs.append(subprocess.Popen(
+                ["dask", "worker", address, "--nthreads", "1", "--no-nanny",
+                 "--host", "127.0.0.1", "--no-dashboard"], env=env, cwd=tmp_path,
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        from dask.distributed import Client
+
+        with Client(address, timeout=60) as client:
+            client.wait_for_workers(2, timeout=60)
+        yield address
+    finally:
+        for p in procs:  # only the processes started here, by their ids
+            p.kill()
+            p.wait(timeout=20)
+
+
+def test_suite_on_a_two_worker_cluster_equals_the_serial_run(cluster, tmp_path):
+    path = tmp_path / "suite.toml"
+    path.write_text(SUITE, encoding="utf-8")
+    suite = load_suite(path)
+    summary = run_suite(suite, tmp_path / "dask", scheduler=cluster, stream=io.StringIO())
+    # 3 records x 2 laws x 2 PGAs = 12 runs in 6 batches of 2
+    assert summary["runs"] == 12 and summary["failed_tasks"] == 0
+    assert len(list((tmp_path / "dask" / "runs").glob("part-*.parquet"))) == 6
+    run_suite(suite, tmp_path / "serial", serial=True, stream=io.StringIO())
+    timing = ["cpu_seconds", "solver_seconds"]
+    got, want = (load_table(tmp_path / d).sort_values("run_id").reset_index(drop=True)
+                 .drop(columns=timing) for d in ("dask", "serial"))
+    pd.testing.assert_frame_equal(got, want)
