@@ -99,8 +99,12 @@ class Suite:
         """suite.json: the definition, its hash and what the report needs."""
         from femoat import __version__
 
+        from femoat.suite.model import has_model_api
+
         s = self.scaling
-        return dict(suite_hash=self.hash, femoat_version=__version__, definition=self.source,
+        detection = ("in the run (femoat.collapse)" if has_model_api() else
+                     "on the finished history; p_delta ignored (TODO: model API not on main yet)")
+        return dict(collapse_detection=detection, suite_hash=self.hash, femoat_version=__version__, definition=self.source,
                     varied_keys=list(self.varied), variations=list(self.combos),
                     n_records=len(self.records), n_stories=self.n_stories,
                     time_scale=self.time_scale,

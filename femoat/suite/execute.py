@@ -105,6 +105,11 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
     unit = "runs" if suite.scaling.hunt is None else "traces"
     summary = dict(out=str(out), suite_hash=suite.hash, todo=total, unit=unit, runs=0,
                    collapses=0, failures=0, failed_tasks=0, kernels=_kernels(stream))
+    from femoat.suite.model import has_model_api
+
+    if not has_model_api():  # TODO(model API): remove with the stand-in of femoat.suite.model
+        stream.write("femoat suite: collapse is checked on each finished history and p_delta is "
+                     "ignored until the model API (femoat.collapse) is merged\n")
     if not tasks:
         stream.write(f"femoat suite: nothing to do, every run is stored in {out}\n")
         return summary
@@ -132,6 +137,12 @@ def _kernels(stream):
     stream.write("femoat suite: using numba's JIT kernels (the ahead-of-time module is switched "
                  "off or could not be built): each worker compiles or loads them once\n")
     return "jit"
+
+
+def _worker_kernels():
+    from femoat import aot
+
+    return "aot" if aot.load() is not None else "jit"
 
 
 def _call(suite, task, out):
@@ -165,6 +176,12 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         client = Client(cluster)
     futures = {}
     try:
+        kinds = set(client.run(_worker_kernels).values())
+        if summary["kernels"] == "aot" and kinds != {"aot"}:
+            progress.stream.write(f"femoat suite: workers use {sorted(kinds)} kernels (the "
+                                  "ahead-of-time module is not loadable there)\n")
+        summary["worker_kernels"] = sorted(kinds)
+        progress.restart()
         shared = client.scatter(suite, broadcast=True)
         absolute = str(Path(out).resolve())
         for task in tasks:

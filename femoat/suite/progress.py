@@ -19,6 +19,10 @@ class Progress:
         self.start = self._last = time.perf_counter()
         self.every = every
 
+    def restart(self):
+        """Start the clock now (after a cluster has started)."""
+        self.start = self._last = time.perf_counter()
+
     def update(self, rows, units=None):
         """Record finished ``rows`` (units of work: ``len(rows)`` unless given)."""
         self.done += len(rows) if units is None else units
