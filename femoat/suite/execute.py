@@ -19,6 +19,7 @@ import json
 import math
 import shutil
 import sys
+import time
 from pathlib import Path
 
 from femoat.suite import runs as rn
@@ -122,8 +123,9 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
             _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file)
     finally:
         progress.close()
+    elapsed = time.perf_counter() - progress.start
     summary.update(runs=progress.runs, collapses=progress.collapses, failures=progress.failures,
-                   seconds=progress.line())
+                   elapsed=elapsed, runs_per_second=progress.runs / elapsed if elapsed else 0.0)
     return summary
 
 
