@@ -46,6 +46,17 @@ def test_a_good_file_validates(tmp_path):
     assert suite.time_scale == 0.5  # default: the quarter-scale paper building
 
 
+def test_glob_and_files_select_the_same_records(tmp_path):
+    by_glob = load_suite(_write(tmp_path, GOOD.replace('folder = "{folder}"',
+                                                       'glob = "{folder}/R*.AT2"')))
+    files = ", ".join(f'"{p.as_posix()}"' for p in sorted(PEER.glob("R*.AT2")))
+    by_files = load_suite(_write(tmp_path, GOOD.replace('folder = "{folder}"',
+                                                        f"files = [{files}]")))
+    assert [r.label for r in by_glob.records] == [r.label for r in by_files.records]
+    assert len(by_glob.records) == 3 and by_glob.hash == by_files.hash
+    assert by_glob.records[0].rsn == 181  # RSN181_IMPVALL...: the RSN from the file name
+
+
 def test_unknown_key_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, GOOD + "[run]\nbatch_sise = 3\n", "batch_sise", "[run]")
 

@@ -52,7 +52,15 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
     from femoat.structure.pounding import PoundingModel
     from femoat.units import G
 
+    from dataclasses import replace
+
+    from femoat.results import RunResult
+    from femoat.suite.runs import run_id
+
     suite = load_suite(_suite(tmp_path))
+    # the full history of one run, by its id ([run] histories does not change the suite hash)
+    wanted = run_id(suite, [r.label for r in suite.records].index("Rinaldi228"), 1, 1.5)
+    suite = replace(suite, histories=(wanted,))
     run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
     df = load_table(tmp_path / "out")
     # 3 records x 2 laws x 2 levels, each stored once
@@ -75,6 +83,9 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
     assert row["peak_drift_1"] == p["peak_drift"][0]
     assert row["peak_floor_acceleration_3"] == p["peak_floor_acceleration"][2]
     assert row["steps"] == p["steps"]
+    assert row["run_id"] == wanted
+    saved = RunResult.load(tmp_path / "out" / "histories" / f"{wanted}.npz")
+    assert np.array_equal(saved.displacement, ref.displacement)
     assert row["sa_t"] == pytest.approx(1.5, rel=1e-12)
     assert row["pga"] == pytest.approx(gm.pga * factor, rel=1e-12)
     # drift ratio = drift / 39 in (default story height)
@@ -88,9 +99,13 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
         row["peak_base_displacement"]
     to_demand_csv(df, tmp_path / "demand.csv")
     demand = pd.read_csv(tmp_path / "demand.csv", index_col=0)
-    assert demand.loc["Units", "PID-1-1"] == "rad" and demand.loc["Units", "PFA-3-1"] == "g"
+    assert demand.loc["Units", "PID-1-1"] == "rad" and demand.loc["Units", "PFA-4-1"] == "g"
     assert float(demand.loc[row["run_id"], "PID-1-1"]) == pytest.approx(
         row["peak_drift_ratio_1"], rel=1e-12)
+    # pelicun's location 0 is the ground (PGA), 1 the base mat, k + 1 the floor atop story k
+    assert float(demand.loc[row["run_id"], "PFA-0-1"]) == pytest.approx(row["pga"], rel=1e-12)
+    assert float(demand.loc[row["run_id"], "PFA-4-1"]) == pytest.approx(
+        row["peak_floor_acceleration_3"], rel=1e-12)
 
 
 def test_a_run_that_cannot_converge_is_stored_and_the_suite_goes_on(tmp_path):
@@ -109,6 +124,7 @@ def test_a_run_that_cannot_converge_is_stored_and_the_suite_goes_on(tmp_path):
         assert r["error"].startswith(f"run {r['run_id']} (")  # the error names its run
         assert "could not converge" in r["error"]
         assert not r["collapsed"] and np.isnan(r["peak_base_displacement"])
+        assert pd.isna(r["pounding"]) and pd.isna(r["steps"])
 
 
 def _cli(args, **kw):

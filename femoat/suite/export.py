@@ -21,8 +21,8 @@ def to_xarray(df):
                                                      "status"}]
     frame = df[_ID + keep].copy()
     for c in keep:
-        if frame[c].dtype == bool or str(frame[c].dtype) == "boolean":
-            frame[c] = frame[c].astype(float)
+        if c != "status":  # nullable Int64 / boolean columns: NaN where missing
+            frame[c] = frame[c].astype("float64")
     ds = frame.set_index(_ID).to_xarray().rename(im="intensity")
     ds.attrs.update(im_kind=str(df["im_kind"].iloc[0]) if len(df) else "",
                     units="forces kip, displacements in, accelerations and im g, times s")
@@ -33,14 +33,14 @@ def to_xarray(df):
 
 
 def to_demand_csv(df, path, n_stories=None):
-    """Write a pelicun demand sample (one row per run of ``df``) to ``path``.
+    """Write a pelicun demand sample (one row per run of ``df``) to ``path``; return ``path``.
 
-    Columns ``type-location-direction`` as pelicun reads them: ``PFA-0-1`` the base mat's peak
-    absolute acceleration (the level at grade, above the isolators), ``PFA-k-1`` floor k [g],
-    ``PID-k-1`` the peak drift ratio of story k [rad], and ``PGA-0-1`` [g] of the record as
-    applied. The second row holds the units (``Units,g,...,rad``); the index is the run_id.
-    Filter ``df`` to one stripe (intensity, variation) first: pelicun reads one sample per
-    hazard level.
+    Columns ``type-location-direction`` with pelicun's (FEMA P-58) numbering, location 0 being
+    the ground: ``PFA-0-1`` the PGA of the record as applied [g], ``PFA-1-1`` the base mat (the
+    floor slab above the isolators) [g], ``PFA-{k+1}-1`` the floor on top of story k [g] and
+    ``PID-k-1`` the peak drift ratio of story k [rad] (story k spans floors k and k+1). The
+    second row holds the units (``Units,g,...,rad``); the index is the run_id. Filter ``df`` to
+    one stripe (intensity, variation) first: pelicun reads one sample per hazard level.
     """
     import pandas as pd
 
@@ -49,12 +49,12 @@ def to_demand_csv(df, path, n_stories=None):
     if n_stories is None:
         n_stories = max((int(c.rsplit("_", 1)[1]) for c in df.columns
                          if c.startswith("peak_drift_ratio_")), default=0)
-    cols, units = {"PGA-0-1": df["pga"]}, {"PGA-0-1": "g"}
-    cols["PFA-0-1"], units["PFA-0-1"] = df["peak_base_acceleration"], "g"
+    cols = {"PFA-0-1": df["pga"], "PFA-1-1": df["peak_base_acceleration"]}
     for k in range(1, n_stories + 1):
-        cols[f"PFA-{k}-1"], units[f"PFA-{k}-1"] = df[f"peak_floor_acceleration_{k}"], "g"
+        cols[f"PFA-{k + 1}-1"] = df[f"peak_floor_acceleration_{k}"]
     for k in range(1, n_stories + 1):
-        cols[f"PID-{k}-1"], units[f"PID-{k}-1"] = df[f"peak_drift_ratio_{k}"], "rad"
+        cols[f"PID-{k}-1"] = df[f"peak_drift_ratio_{k}"]
+    units = {c: ("rad" if c.startswith("PID") else "g") for c in cols}
     demand = pd.DataFrame(cols)
     demand.index = df["run_id"].to_numpy()
     table = pd.concat([pd.DataFrame([units], index=["Units"]), demand.astype(object)])

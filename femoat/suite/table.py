@@ -106,10 +106,13 @@ def load_table(out, columns=None):
         if not (Path(out) / "suite.json").is_file():
             raise FileNotFoundError(f"{out} is not a suite folder (no suite.json, no runs/).")
         return pd.DataFrame(columns=columns or [])
-    tables = [pq.read_table(p, columns=columns) for p in parts]
     import pyarrow as pa
 
-    df = pa.concat_tables(tables, promote_options="default").to_pandas()
+    tables = [pq.read_table(p, columns=columns) for p in parts]
+    # integers and booleans that may be missing (rsn, pulse, pounding of a failed run) keep
+    # their type as pandas' nullable Int64 / boolean
+    nullable = {pa.int64(): pd.Int64Dtype(), pa.bool_(): pd.BooleanDtype()}
+    df = pa.concat_tables(tables, promote_options="default").to_pandas(types_mapper=nullable.get)
     return df.drop_duplicates("run_id", keep="first").reset_index(drop=True)
 
 
