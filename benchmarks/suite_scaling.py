@@ -72,6 +72,9 @@ def main():
     path = work / "suite.toml"
     path.write_text(SUITE.format(folder=(ROOT / "tests/data/peer").as_posix(), levels=levels))
     suite = load_suite(path)
+    import os
+
+    print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     print(f"suite: {len(suite.records)} records x {len(suite.combos)} variations x "
           f"{len(levels)} levels = {len(suite.records) * len(suite.combos) * len(levels)} runs; "
           f"kernels: {'aot' if aot.load() else 'jit'}")
@@ -103,6 +106,7 @@ def main():
           "plain loop")
     print(f"suite machinery, serial    : {100 * ((n / wall) / rows['suite, serial'] - 1):+6.1f} % "
           "time against the plain loop")
+    print(f"load average after: {os.getloadavg()[0]:.2f} (other users' processes share the cores)")
     if args.keep is None:
         shutil.rmtree(work, ignore_errors=True)
 

@@ -183,8 +183,9 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
             progress.stream.write(f"femoat suite: workers use {sorted(kinds)} kernels (the "
                                   "ahead-of-time module is not loadable there)\n")
         summary["worker_kernels"] = sorted(kinds)
-        progress.restart()
         shared = client.scatter(suite, broadcast=True)
+        client.run(rn.warm, suite)  # per worker: models built, record set loaded, once
+        progress.restart()
         absolute = str(Path(out).resolve())
         for task in tasks:
             if task[0] == "batch":

@@ -68,6 +68,16 @@ def _model(suite, var_index):
     return _MODELS[key]
 
 
+def warm(suite):
+    """Build every variation's model and load the first record (for a FEMA P695 suite, its
+    whole set) in this process, so that the first runs do not pay for it."""
+    from femoat.suite.records import load_motion
+
+    for v in range(len(suite.combos)):
+        _model(suite, v)
+    load_motion(suite.records[0])
+
+
 def run_batch(suite, specs, out_dir=None):
     """Task: run ``specs``; return their rows. ``out_dir`` receives requested histories."""
     return [run_one(suite, s, out_dir) for s in specs]
