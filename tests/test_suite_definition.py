@@ -80,6 +80,11 @@ def test_malformed_at2_among_good_ones_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, GOOD, "Broken.AT2", "NPTS", folder=folder)
 
 
+def test_record_ids_must_be_a_list(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD.replace('folder = "{folder}"', 'set = "farfield"\nids = 3'),
+           "[records] ids = 3")
+
+
 def test_negative_intensity_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, GOOD.replace("[0.2, 0.4]", "[0.2, -0.4]"), "levels[1]")
 

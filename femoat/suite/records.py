@@ -62,6 +62,14 @@ def records_from_dict(d, base_dir=Path(".")):
         raise ValueError("[records] needs exactly one of set = 'farfield' (FEMA P695), "
                          "folder = 'dir', glob = 'dir/*.AT2' or files = [...]; got "
                          f"{sources or 'none'}.")
+    for key, kind, example in (("ids", int, "[1, 2, 3]"), ("components", str, "['a', 'b']"),
+                               ("files", str, "['a.AT2', 'b.AT2']")):
+        if key in d and (not isinstance(d[key], list) or not all(
+                isinstance(v, kind) and not isinstance(v, bool) for v in d[key])):
+            raise ValueError(f"[records] {key} = {d[key]!r}: give a list like {example}.")
+    for key in ("set", "folder", "glob"):
+        if key in d and not isinstance(d[key], str):
+            raise ValueError(f"[records] {key} = {d[key]!r}: give a string.")
     if "set" in d:
         return _fema_refs(d)
     for key in ("ids", "components"):
