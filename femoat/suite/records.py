@@ -75,7 +75,14 @@ def records_from_dict(d, base_dir=Path(".")):
     for key in ("ids", "components"):
         if key in d:
             raise ValueError(f"[records] {key} applies to set = '...' (FEMA P695) only.")
-    return [_at2_ref(p) for p in _files(d, Path(base_dir))]
+    refs = [_at2_ref(p) for p in _files(d, Path(base_dir))]
+    seen = {}
+    for r in refs:  # the file stem names a record in the table and in run ids
+        if r.label in seen:
+            raise ValueError(f"[records] two files are named {r.label}: {seen[r.label]} and "
+                             f"{r.path}; rename one (each record needs its own name).")
+        seen[r.label] = r.path
+    return refs
 
 
 def _fema_refs(d):
