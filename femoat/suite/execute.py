@@ -194,8 +194,8 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
                 f = client.submit(rn.run_trace, shared, task[1], task[2], task[3], absolute,
                                   pure=False)
             futures[f] = task
-        for f in as_completed(futures):
-            task = futures[f]
+        for f in as_completed(list(futures)):
+            task = futures.pop(f)  # dropping the future frees its result on the cluster
             try:
                 rows = f.result()
             except Exception as exc:  # noqa: BLE001 - e.g. a worker killed too often
