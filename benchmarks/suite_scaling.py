@@ -11,7 +11,9 @@ on Sa(3.5 s prototype)) is run
 
 Printed: runs/s (steady: from the first submission to the last result; and overall, with the
 cluster start-up), parallel efficiency of 2 workers against 1, Dask's overhead against the plain
-loop, and the CPU of a run split into solver (the compiled loop) and everything else. The
+loop, the CPU of a run split into solver (the compiled loop) and everything else (in the
+worker), and the client's CPU per run (with a LocalCluster the scheduler runs in the client).
+Each setting is run ``--repeat`` times and the fastest is shown. The
 machine's 2 cores may be shared: read the numbers as of the moment they were measured.
 """
 
@@ -60,6 +62,7 @@ def plain_loop(suite):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--levels", type=int, default=4, help="stripes per record (default 4)")
+    ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
     from femoat import aot
@@ -80,7 +83,8 @@ def main():
           f"kernels: {'aot' if aot.load() else 'jit'}")
 
     plain_loop(suite)  # warm: records read, kernels loaded
-    wall, cpu, solver, n = plain_loop(suite)
+    wall, cpu, solver, n = min((plain_loop(suite) for _ in range(args.repeat)),
+                               key=lambda m: m[0])
     print(f"plain loop, 1 process      : {n / wall:7.1f} runs/s   CPU/run {1e3 * cpu / n:6.1f} ms "
           f"(solver {1e3 * solver / n:5.1f} ms, rest {1e3 * (cpu - solver) / n:5.1f} ms)")
 
@@ -89,16 +93,22 @@ def main():
                      ("dask, 2 workers", dict(workers=2))):
         out = work / name.replace(", ", "-").replace(" ", "")
         shutil.rmtree(out, ignore_errors=True)
-        start = time.perf_counter()
-        summary = run_suite(suite, out, stream=io.StringIO(), **kw)
-        total = time.perf_counter() - start
-        df = load_table(out)
+        best = None
+        for _ in range(args.repeat):  # best of a few: other users share the cores
+            shutil.rmtree(out, ignore_errors=True)
+            start, client_cpu = time.perf_counter(), time.process_time()
+            summary = run_suite(suite, out, stream=io.StringIO(), **kw)
+            total, client_cpu = time.perf_counter() - start, time.process_time() - client_cpu
+            if best is None or summary["runs_per_second"] > best[0]["runs_per_second"]:
+                best = (summary, total, client_cpu, load_table(out))
+        summary, total, client_cpu, df = best
         rows[name] = summary["runs_per_second"]
         print(f"{name:27s}: {summary['runs_per_second']:7.1f} runs/s steady, "
               f"{summary['runs'] / total:6.1f} overall (start-up {total - summary['elapsed']:4.1f} s)"
               f"   CPU/run {1e3 * df['cpu_seconds'].mean():6.1f} ms (solver "
               f"{1e3 * df['solver_seconds'].mean():5.1f} ms, rest "
-              f"{1e3 * (df['cpu_seconds'] - df['solver_seconds']).mean():5.1f} ms)")
+              f"{1e3 * (df['cpu_seconds'] - df['solver_seconds']).mean():5.1f} ms); client "
+              f"{1e3 * client_cpu / summary['runs']:5.1f} ms/run")
     one, two = rows["dask, 1 worker"], rows["dask, 2 workers"]
     print(f"2 workers against 1        : speed-up {two / one:4.2f}, efficiency "
           f"{100 * two / (2 * one):5.1f} %")

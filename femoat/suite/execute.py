@@ -172,9 +172,14 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
     else:
         import os
 
+        import dask
+
         n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR)
+        # our own local workers go without Dask's statistical profiler (it samples every
+        # thread's stack every 10 ms, holding the GIL, beside runs of a few ms)
+        with dask.config.set({"distributed.worker.profile.enabled": False}):
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.ERROR)
         client = Client(cluster)
     futures = {}
     try:
