@@ -83,16 +83,19 @@ def fit_ida(collapse_im, censored_im=()):
             raise FragilityError("the censored IDA likelihood has no finite maximum")
         mu, beta = res.x[0], float(np.exp(res.x[1]))
         note = f"{c.size} record(s) never collapsed: right-censored at their largest IM"
-    med = _censored_median(x, c)
+    med = ida_empirical_median(x, c)
     if not np.isfinite(med):
         note += "; empirical median undefined: half or more of the records never collapsed"
     return Fragility(float(np.exp(mu)), float(beta), med, x.size + c.size, x.size, c.size, "ida",
                      note)
 
 
-def _censored_median(x, c):
+def ida_empirical_median(x, c):
     """Median with the censored records counted above every collapse; NaN when it falls on a
     censored record (over half the records never collapsed)."""
+    x, c = np.asarray(x, float), np.asarray(c, float)
+    if x.size + c.size == 0:
+        return float("nan")
     v = np.sort(np.concatenate([x, np.full(c.size, np.inf)]))
     med = float(np.median(v))
     return med if np.isfinite(med) else float("nan")
@@ -128,14 +131,15 @@ def fit_stripes(im, n_runs, n_collapsed):
     if not np.all(np.isfinite(res.x)) or res.x[1] > np.log(50.0):
         raise FragilityError("the stripe likelihood has no finite maximum")
     theta, beta = float(np.exp(res.x[0])), float(np.exp(res.x[1]))
-    med = _stripe_median(x, n, z)
+    med = stripe_empirical_median(x, n, z)
     note = "" if np.isfinite(med) else "empirical median undefined: no stripe reaches 50 %"
     return Fragility(theta, beta, med, int(n.sum()), int(z.sum()), 0, "stripes", note)
 
 
-def _stripe_median(x, n, z):
+def stripe_empirical_median(x, n, z):
     """IM [g] where the empirical collapse fraction first reaches 0.5 (linear in ln IM between
     stripes); NaN when it never does."""
+    x, n, z = (np.asarray(a, float) for a in (x, n, z))
     order = np.argsort(x)
     x, f = x[order], (z / n)[order]
     k = np.flatnonzero(f >= 0.5)

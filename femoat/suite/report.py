@@ -1,0 +1,146 @@
+"""The report of a record suite: per variation the collapse fragility and the FEMA P695 margin,
+the responses side by side, and the probability of pounding; CSV tables and PNG figures.
+
+Entry points: :func:`run_report` (``DIR/runs/*.parquet`` + ``DIR/suite.json`` → ``DIR/report/``)
+and :func:`write_report` (a run table and the suite's meta dict → any folder).
+
+Run-table columns used: status, collapsed, im [g], im_kind, record_set/record_id/component (a
+record), the varied keys (``meta["varied"]``), pounding, peak_impact_force_pos/neg [kip],
+peak_wall_displacement_pos/neg [in], peak_base_displacement [in], peak_drift_ratio [-],
+peak_floor_acceleration_<k> [g]. Meta keys used: varied, period [s], sdc, smt [g], record_set,
+scaling ("ida" | "p695" | "pga"), hunt_fill, solver_failure, time_scale; optional mu_t (μT,
+default 3.0) and ratings (default B, B, B).
+
+IDA suites ("scaling" = "ida") fit one collapse intensity per record (:func:`fit_ida`), the
+others fit stripes (:func:`fit_stripes`). Responses and pounding are tabulated at every stripe
+(every IM level of an ordinary IDA); a hunt-and-fill IDA has no common levels, so each record
+contributes its run nearest (within ±25 %) to S_MT × (0.5, 1, 1.5, 2, 3), or to ``levels``.
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from femoat.atomic import atomic_path, write_text
+from femoat.suite import statistics as st
+from femoat.suite.fragility import (FragilityError, fit_ida, fit_stripes, ida_empirical_median,
+                                    stripe_empirical_median)
+from femoat.suite.p695 import assess
+from femoat.suite.readme import readme_text
+
+HUNT_FILL_LEVELS = (0.5, 1.0, 1.5, 2.0, 3.0)  # × S_MT
+
+
+def run_report(directory, **options):
+    """Read ``directory``/runs/*.parquet and suite.json, write ``directory``/report/; returns the
+    written paths. ``options`` go to :func:`write_report`."""
+    d = Path(directory)
+    parts = sorted((d / "runs").glob("*.parquet"))
+    if not parts:
+        raise FileNotFoundError(f"no run table in {d / 'runs'} (expected *.parquet part files)")
+    table = pd.concat([pd.read_parquet(p) for p in parts], ignore_index=True)
+    meta = json.loads((d / "suite.json").read_text(encoding="utf-8"))
+    return write_report(table, meta, d / "report", **options)
+
+
+def _collapse(rows, use, meta, ida, p695_args):
+    """One collapse_summary row and the fragility figure's data for one variation."""
+    smt = float(meta["smt"])
+    if ida:
+        x, c = st.ida_collapse_data(use)
+        s_ct, n, n_col, n_cens = ida_empirical_median(x, c), x.size + c.size, x.size, c.size
+        pts = np.sort(x)
+        frac = np.arange(1, x.size + 1) / max(n, 1)
+        fit = lambda: fit_ida(x, c)  # noqa: E731
+    else:
+        pts, nn, z = st.stripe_counts(use)
+        s_ct, n = stripe_empirical_median(pts, nn, z), int(nn.sum())
+        n_col, n_cens = int(z.sum()), 0
+        frac = z / nn
+        fit = lambda: fit_stripes(pts, nn, z)  # noqa: E731
+    notes, theta, beta = [], np.nan, np.nan
+    try:
+        f = fit()
+        theta, beta = f.theta, f.beta
+        notes += [f.note] if f.note else []
+    except FragilityError as e:
+        notes.append(f"no fit: {e}")
+    if not np.isfinite(s_ct) and len(use):
+        notes.append(f"S_CT undefined: fewer than half collapsed up to {use['im'].max():.3g} g")
+    row = {"method": "ida" if ida else "stripes",
+           "n_records": int(rows.groupby(st.record_keys(rows), dropna=False).ngroups),
+           "n_runs": len(use), "n_collapsed": n_col, "n_censored": n_cens,
+           "n_solver_failures": int((rows["status"] == "solver_failure").sum()),
+           "n_errors": int((rows["status"] == "error").sum()),
+           "solver_failure_policy": meta.get("solver_failure", "separate"),
+           "S_CT empirical [g]": s_ct, "theta fitted [g]": theta, "beta fitted [-]": beta,
+           "S_MT [g]": smt}
+    try:
+        a = assess(s_ct, smt, theta=None if np.isnan(theta) else theta,
+                   beta=None if np.isnan(beta) else beta, **p695_args).as_dict()
+    except ValueError as e:
+        a = {}
+        notes.append(f"no P695 check: {e}")
+    names = {"cmr": "CMR [-]", "ssf": "SSF [-]", "acmr": "ACMR [-]", "mu_t": "mu_T [-]",
+             "beta_total": "beta_TOT [-]", "acmr10": "ACMR10% [-]", "acmr20": "ACMR20% [-]",
+             "p_collapse_mce": "P(collapse|MCE) fitted [-]",
+             "p_collapse_mce_total": "P(collapse|MCE) beta_TOT [-]",
+             "passes_acmr20": "pass ACMR>=ACMR20%", "passes_acmr10": "pass ACMR>=ACMR10%"}
+    row.update({v: a.get(k, np.nan) for k, v in names.items()})
+    row["note"] = "; ".join(notes)
+    curve = dict(x=pts, fraction=frac, theta=theta, beta=beta, n_collapsed=n_col, n=n)
+    return row, curve
+
+
+def _ida_panel(use, metric):
+    value = st.METRICS[metric][1]
+    return [(r["im"].to_numpy(float), value(r).to_numpy(float), r["collapse"].to_numpy(bool))
+            for _, r in use.groupby(st.record_keys(use), sort=False, dropna=False)]
+
+
+def _write_csv(df, path):
+    with atomic_path(path) as tmp:
+        df.to_csv(tmp, index=False)
+    return Path(path)
+
+
+def write_report(table, meta, out_dir, *, mu_t=None, ratings=None, levels=None):
+    """Write collapse_summary.csv, response_by_variation.csv, pounding_probability.csv, the
+    figures and README.txt into ``out_dir``; returns the written paths."""
+    from femoat.suite import report_figures
+
+    out, varied = Path(out_dir), list(meta.get("varied", []))
+    smt, ida = float(meta["smt"]), meta.get("scaling") == "ida"
+    p695_args = dict(period=float(meta["period"]), sdc=meta["sdc"], record_set=meta["record_set"],
+                     mu_t=float(mu_t or meta.get("mu_t", 3.0)),
+                     ratings=tuple(ratings or meta.get("ratings", ("B", "B", "B"))))
+    mu_source = ("given" if mu_t else "from suite.json" if "mu_t" in meta
+                 else "default, not measured: give mu_t")
+    if levels is None and ida and meta.get("hunt_fill"):
+        levels = [f * smt for f in HUNT_FILL_LEVELS]
+    summary, responses, figs = [], [], []
+    for label, key, rows in st.variations(table, varied):
+        use = st.usable_runs(rows, meta.get("solver_failure", "separate"))
+        row, curve = _collapse(rows, use, meta, ida, p695_args)
+        summary.append({"variation": label, **key, **row})
+        resp = st.response_table(use, ida, levels)
+        if len(resp):
+            resp.insert(1, "im / S_MT [-]", resp["im [g]"] / smt)
+            responses.append(resp.assign(**{"variation": label, **key}))
+        panels = {m: _ida_panel(use, m) for m in ("peak_drift_ratio", "peak_base_displacement")}
+        figs.append((label, key, curve, resp, panels))
+    cols = ["variation", *varied]
+    resp = pd.concat(responses, ignore_index=True) if responses else pd.DataFrame(columns=cols)
+    resp = resp[cols + [c for c in resp.columns if c not in cols]]
+    pound = resp[cols + ["im [g]", "im / S_MT [-]", "n_records", "pounding probability [-]"]] \
+        if len(resp) else resp
+    paths = [_write_csv(pd.DataFrame(summary), out / "collapse_summary.csv"),
+             _write_csv(resp, out / "response_by_variation.csv"),
+             _write_csv(pound, out / "pounding_probability.csv")]
+    paths += report_figures.write_figures(figs, meta, table, out, ida)
+    paths.append(out / "README.txt")
+    names = [p.name for p in paths]
+    write_text(paths[-1], readme_text(meta, p695_args, mu_source, ida, levels, names))
+    return paths
