@@ -106,10 +106,20 @@ def test_stripes_empirical_median_interpolates_the_fraction_in_ln_im():
 
 @pytest.mark.parametrize("z, match", [([10, 10, 10], "every run collapsed"),
                                       ([0, 0, 0], "no collapse"),
-                                      ([0, 10, 10], "separate perfectly")])
+                                      ([0, 10, 10], "do not overlap"),
+                                      ([0, 3, 10], "do not overlap")])
 def test_stripes_degenerate_inputs_raise_with_a_sentence(z, match):
+    # [0, 3, 10]: one partial stripe between all-survive and all-collapse ones. Along
+    # ln θ = −β Φ⁻¹(0.3) the 1 g stripe keeps p = 0.3 while, as β → 0, p → 0 at 0.5 g and p → 1
+    # at 1.5 g: the likelihood rises towards its supremum without reaching it (quasi-separation)
     with pytest.raises(FragilityError, match=match):
         fit_stripes([0.5, 1.0, 1.5], [10, 10, 10], z)
+
+
+def test_a_single_stripe_does_not_fix_two_parameters():
+    # Φ(ln(x/θ)/β) = 3/10 holds along a whole line of (θ, β)
+    with pytest.raises(FragilityError, match="do not overlap"):
+        fit_stripes([1.0], [10], [3])
 
 
 def test_probability_is_the_lognormal_cdf():

@@ -195,3 +195,29 @@ def test_hunt_and_fill_ida_takes_each_records_run_nearest_the_levels(tmp_path):
     h = resp[(resp["walls.law"] == "H") & np.isclose(resp["im [g]"], 0.6)].iloc[0]
     assert h["peak_impact_force median [kip]"] == pytest.approx(60.0)  # 100·0.6·e^0
     assert "nearest (within +-25 %)" in (tmp_path / "README.txt").read_text()
+
+
+def test_messy_suite_reports_every_variation_with_reasons(tmp_path):
+    # an error run, a censored record (H record 11 stopped below its collapse), a wall whose
+    # every run failed in the solver, PGA as intensity and no μT in suite.json
+    t = synthetic_ida()
+    t = t[~((t["walls.law"] == "H") & (t["record_id"] == 11) & (t["im"] > 2.5))]
+    t = pd.concat([t, pd.DataFrame([_run("H", 0, 0.3, False, status="error"),
+                                    _run("E", 0, 0.3, False, status="solver_failure")
+                                    | {"walls.preset": "steel"}])], ignore_index=True)
+    t["im_kind"] = "pga"
+    meta = {k: v for k, v in META.items() if k != "mu_t"} | {"solver_failure": "exclude"}
+    paths = write_report(t, meta, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("variation")
+    h = s.loc["H / concrete"]
+    # record 11 is right-censored at its largest IM, 2.4 g (collapse at 2.95 g removed)
+    assert (h["n_collapsed"], h["n_censored"], h["n_errors"]) == (10, 1, 1)
+    assert "censored" in h["note"] and h["S_CT empirical [g]"] == pytest.approx(1.5)
+    steel = s.loc["E / steel"]
+    assert steel["n_solver_failures"] == 1 and steel["n_runs"] == 0
+    assert "no fit" in steel["note"] and np.isnan(steel["CMR [-]"])
+    # μT defaults to 3: β_RTR = 0.4, β_TOT = 0.525 still; SSF = exp(0.14·2^0.42·1.5)
+    assert h["SSF [-]"] == pytest.approx(np.exp(0.14 * 2**0.42 * 1.5))
+    readme = (tmp_path / "README.txt").read_text()
+    assert "default, not measured" in readme and "PGA" in readme and "'exclude'" in readme
+    assert all(p.stat().st_size > 0 for p in paths)

@@ -15,7 +15,7 @@ Two kinds of data (intensities IM in [g], the suite's intensity measure):
 
 FEMA P695 feeds the collapse margin ratio with the *empirical* median collapse intensity Ŝ_CT of
 the records (Section 6.4); the fitted θ is reported beside it. Inputs that define no fragility
-(no collapse, every run collapsing, perfectly separated stripes, zero spread) raise
+(no collapse, every run collapsing, stripes that do not overlap, zero spread) raise
 :class:`FragilityError` with a sentence; nothing returns NaN silently.
 """
 
@@ -118,10 +118,14 @@ def fit_stripes(im, n_runs, n_collapsed):
         raise FragilityError(f"no collapse in {int(n.sum())} runs up to {x.max():.4g} g")
     if z.sum() == n.sum():
         raise FragilityError(f"every run collapsed, down to the lowest stripe {x.min():.4g} g")
-    none, every = x[z == 0], x[z == n]
-    if np.all((z == 0) | (z == n)) and none.max() < every.min():
-        raise FragilityError(f"stripes separate perfectly (none below {every.min():.4g} g, all "
-                             "from there up): β → 0, θ is not identified")
+    # (quasi-)separation: no stripe with a survivor lies above a stripe with a collapse (a single
+    # stripe, or one partial stripe between all-survive and all-collapse ones): the likelihood
+    # grows as β → 0 and no finite MLE exists
+    top_alive, low_dead = x[z < n].max(), x[z > 0].min()
+    if top_alive <= low_dead:
+        raise FragilityError(f"the stripes do not overlap (no run survives above {low_dead:.4g} g "
+                             f"and none collapses below {top_alive:.4g} g): β → 0 and θ is not "
+                             "identified; add stripes where some but not all runs collapse")
     ln_x = np.log(x)
     frac = np.clip(z / n, 0.05, 0.95)  # start: least-squares probit line through the fractions
     slope, icpt = np.polyfit(ln_x, stats.norm.ppf(frac), 1, w=np.sqrt(n))

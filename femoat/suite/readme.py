@@ -51,7 +51,11 @@ def readme_text(meta, p695_args, mu_source, ida, levels, written):
                  "upper bound of the final bracket); records that never collapse are "
                  "right-censored at their largest IM (survival term in the likelihood)."
                  if ida else "multiple stripes, binomial likelihood (Baker 2015)."),
-             "CMR uses the empirical median S_CT (FEMA P695 Section 6.4), not the fitted theta.",
+             "CMR uses the empirical median S_CT (FEMA P695 Section 6.4), not the fitted theta."
+             + (" The suite's intensity is PGA: S_CT and S_MT are PGAs here, whereas FEMA P695 "
+                "defines the CMR on Sa(T)." if meta.get("im_kind") == "pga" else ""),
+             "A record is one horizontal component (both components of a pair count, as in "
+             "FEMA P695).",
              "Intensities of the response tables: " + (
                  "every stripe / IM level." if levels is None else
                  "each record's run nearest (within +-25 %) to " +

@@ -111,6 +111,10 @@ def write_report(table, meta, out_dir, *, mu_t=None, ratings=None, levels=None):
     figures and README.txt into ``out_dir``; returns the written paths."""
     from femoat.suite import report_figures
 
+    kinds = set(table["im_kind"].dropna()) if "im_kind" in table else set()
+    if len(kinds) > 1:
+        raise ValueError(f"one intensity measure per suite, not {sorted(kinds)}")
+    meta = {**meta, "im_kind": meta.get("im_kind") or (kinds.pop() if kinds else "sa")}
     out, varied = Path(out_dir), list(meta.get("varied", []))
     smt, ida = float(meta["smt"]), meta.get("scaling") == "ida"
     p695_args = dict(period=float(meta["period"]), sdc=meta["sdc"], record_set=meta["record_set"],
@@ -139,7 +143,7 @@ def write_report(table, meta, out_dir, *, mu_t=None, ratings=None, levels=None):
     paths = [_write_csv(pd.DataFrame(summary), out / "collapse_summary.csv"),
              _write_csv(resp, out / "response_by_variation.csv"),
              _write_csv(pound, out / "pounding_probability.csv")]
-    paths += report_figures.write_figures(figs, meta, table, out, ida)
+    paths += report_figures.write_figures(figs, meta, out, ida)
     paths.append(out / "README.txt")
     names = [p.name for p in paths]
     write_text(paths[-1], readme_text(meta, p695_args, mu_source, ida, levels, names))

@@ -11,19 +11,18 @@ UNITS = {"peak_impact_force": "kip", "peak_wall_displacement": "in", "peak_drift
          "peak_floor_acceleration": "g"}
 
 
-def im_label(meta, table):
-    kind = meta.get("im_kind") or (table["im_kind"].iloc[0] if len(table) else "sa")
-    if kind == "pga":
+def im_label(meta):
+    if meta.get("im_kind") == "pga":
         return "PGA [g]"
     return f"Sa(T = {float(meta['period']):.2f} s) [g]"
 
 
-def write_figures(figs, meta, table, out, ida):
+def write_figures(figs, meta, out, ida):
     """``figs`` = [(label, key, fragility curve, response table, {metric: IDA panel})];
     returns the PNG paths written into ``out``."""
     from femoat.plotting import suite_figures as sf
 
-    smt, label_im = float(meta["smt"]), im_label(meta, table)
+    smt, label_im = float(meta["smt"]), im_label(meta)
     labels = [f[0] for f in figs]
     styles = sf.variation_styles([f[1] for f in figs])
     paths = [out / "fragility.png", out / "pounding_probability.png"]

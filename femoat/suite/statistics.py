@@ -3,7 +3,8 @@ response statistics (median and lognormal dispersion across records).
 
 The run table has one row per run (columns listed in :mod:`femoat.suite.report`). A *variation* is
 one combination of the varied scenario keys (``meta["varied"]``, e.g. "walls.law" ×
-"walls.preset"); a *record* is one (record_set, record_id, component).
+"walls.preset"); a *record* is one (record_set, record_id, component): as in FEMA P695, each
+horizontal component of a pair counts as a record.
 
 Solver failures follow ``meta["solver_failure"]``: "separate" keeps them out of the fragility and
 statistics and reports their count, "collapse" counts them as collapses, "exclude" drops them
@@ -53,6 +54,9 @@ def variations(table, varied):
     """[(label, {key: value}, rows)] per combination of the varied keys, in table order."""
     if not varied:
         return [("all", {}, table)]
+    missing = [k for k in varied if k not in table.columns]
+    if missing:
+        raise ValueError(f"the run table has no column for the varied key(s) {missing}")
     out = []
     for values, rows in table.groupby(list(varied), sort=False, dropna=False):
         values = values if isinstance(values, tuple) else (values,)
@@ -118,7 +122,8 @@ def response_row(rows):
     """Counts, pounding probability and, over the runs that did not collapse, the median and
     lognormal dispersion (std of ln over the positive values, ddof 1) of each metric."""
     alive = rows[~rows["collapse"]]
-    pounding = rows["pounding"].fillna(False).astype(bool)
+    pounding = (rows["pounding"].fillna(False).astype(bool) if "pounding" in rows
+                else rows[["impacts_pos", "impacts_neg"]].fillna(0).sum(axis=1) > 0)
     row = {"n_records": len(rows), "n_collapsed": int(rows["collapse"].sum()),
            "n_not_collapsed": len(alive), "pounding probability [-]": float(pounding.mean())}
     for name, (unit, value) in METRICS.items():
