@@ -112,6 +112,8 @@ def test_ida_report_numbers_equal_closed_forms(tmp_path):
         # ACMR(H) = 1.609·2.5 = 4.0, ACMR(E) = 1.609·1.667 = 2.68: both >= 1.96
         assert r["pass ACMR>=ACMR10%"] and r["pass ACMR>=ACMR20%"]
     assert (s.loc["E", "n_solver_failures"], s.loc["H", "n_solver_failures"]) == (1, 0)
+    # E's failure at 0.3 g, taken as a collapse, stays below the median record: S_CT unchanged
+    assert s.loc["E", "S_CT if solver failures collapsed [g]"] == pytest.approx(1.0)
     resp = pd.read_csv(tmp_path / "response_by_variation.csv")
     low = resp[(resp["walls.law"] == "H") & np.isclose(resp["im [g]"], 0.2)].iloc[0]
     # at 0.2 g no record has collapsed (lowest collapse 1.5·e^(0.4·(−1.69)) = 0.76 g): the median

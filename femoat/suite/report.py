@@ -45,6 +45,12 @@ def run_report(directory, **options):
     return write_report(table, meta, d / "report", **options)
 
 
+def _median(use, ida):
+    """Empirical median collapse intensity Ŝ_CT [g] of the usable runs."""
+    return ida_empirical_median(*st.ida_collapse_data(use)) if ida else \
+        stripe_empirical_median(*st.stripe_counts(use))
+
+
 def _collapse(rows, use, meta, ida, p695_args):
     """One collapse_summary row and the fragility figure's data for one variation."""
     smt = float(meta["smt"])
@@ -76,6 +82,7 @@ def _collapse(rows, use, meta, ida, p695_args):
            "n_errors": int((rows["status"] == "error").sum()),
            "solver_failure_policy": meta.get("solver_failure", "separate"),
            "S_CT empirical [g]": s_ct, "theta fitted [g]": theta, "beta fitted [-]": beta,
+           "S_CT if solver failures collapsed [g]": _median(st.usable_runs(rows, "collapse"), ida),
            "S_MT [g]": smt}
     try:
         a = assess(s_ct, smt, theta=None if np.isnan(theta) else theta,

@@ -45,7 +45,9 @@ def usable_runs(table, policy):
         raise ValueError(f"solver_failure policy must be one of {POLICIES}, not {policy!r}")
     t = table[table["status"] != "error"]
     failed = (t["status"] == "solver_failure").to_numpy()
-    collapsed = t["collapsed"].fillna(False).astype(bool).to_numpy() | (t["status"] == "collapsed")
+    collapsed = (t["status"] == "collapsed").to_numpy()
+    if "collapsed" in t:
+        collapsed = collapsed | t["collapsed"].astype("boolean").fillna(False).to_numpy(bool)
     t = t.assign(collapse=collapsed | (failed & (policy == "collapse")))
     return t if policy == "collapse" else t[~failed]
 
