@@ -20,18 +20,22 @@ LEVEL_DIGITS = 4  # stripes: IMs equal to 4 significant digits are one level
 NEAREST = np.log(1.25)  # hunt-and-fill IDA: a record's run within ±25 % of a level stands for it
 
 
-def _pos_neg_max(t, name, absolute=False):
-    v = t[[f"{name}_pos", f"{name}_neg"]]
-    return (v.abs() if absolute else v).max(axis=1)
+def _largest(t, name, pattern):
+    """Largest |value| over the columns matching ``pattern`` (pos/neg sides, stories), else the
+    column ``name`` itself."""
+    v = t.filter(regex=pattern)
+    return (v if v.shape[1] else t[[name]]).abs().max(axis=1)
 
 
 METRICS = {  # name: (unit, value per run)
-    "peak_impact_force": ("kip", lambda t: _pos_neg_max(t, "peak_impact_force", True)),
-    "peak_wall_displacement": ("in", lambda t: _pos_neg_max(t, "peak_wall_displacement", True)),
+    "peak_impact_force": ("kip", lambda t: _largest(
+        t, "peak_impact_force", r"^peak_impact_force_(pos|neg)$")),
+    "peak_wall_displacement": ("in", lambda t: _largest(
+        t, "peak_wall_displacement", r"^peak_wall_displacement_(pos|neg)$")),
     "peak_base_displacement": ("in", lambda t: t["peak_base_displacement"].abs()),
     "peak_drift_ratio": ("-", lambda t: t["peak_drift_ratio"].abs()),
-    "peak_floor_acceleration": ("g", lambda t: t.filter(
-        regex=r"^peak_floor_acceleration_\d+$").abs().max(axis=1)),
+    "peak_floor_acceleration": ("g", lambda t: _largest(
+        t, "peak_floor_acceleration", r"^peak_floor_acceleration_\d+$")),
 }
 
 
