@@ -3,9 +3,8 @@
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
     "records, solver failures, errors), the empirical median collapse intensity S_CT (when "
-    "fewer than half collapsed, a lower bound, flagged; the CMR and ACMR then are lower bounds and a failed "
-    "check reads 'inconclusive'), the fitted "
-    "lognormal theta and beta, S_CT had every solver failure been a collapse (the sensitivity "
+    "fewer than half collapsed, a lower bound, flagged; the CMR and ACMR then are lower bounds "
+    "and a failed check reads 'inconclusive'), the fitted lognormal theta and beta, S_CT had every solver failure been a collapse (the sensitivity "
     "to the policy), S_MT, CMR = S_CT/S_MT, SSF, ACMR = SSF*CMR, mu_T, beta_TOT, the "
     "acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the fitted fragility and from "
     "beta_TOT, pass/fail and notes. n_collapsed counts records (IDA) or runs (stripes).",
