@@ -67,14 +67,17 @@ def plot_ida_curves(panels, path, xlabel, im_label, s_mt=None):
 def plot_fragilities(curves, path, im_label, s_mt=None):
     """Collapse fragilities, one curve per variation: ``curves`` = [(label, style, d)] with d
     holding ``x``, ``fraction`` (empirical points), ``theta`` [g], ``beta`` [-] (NaN: no fit),
-    ``n_collapsed`` and ``n`` (counts shown in the legend)."""
+    ``n_collapsed`` and ``n`` (counts shown in the legend) and ``ida`` (points joined as an
+    empirical CDF; stripes: points only)."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.6), constrained_layout=True)
     top = max([np.max(d["x"]) for _, _, d in curves if len(d["x"])] or [1.0]) * 1.3
     grid = np.linspace(top / 400, top, 400)
     for label, style, d in curves:
         text = f"{label} ({d['n_collapsed']}/{d['n']} collapsed)"
-        ax.step(d["x"], d["fraction"], where="post", color=style["color"], lw=0.8, alpha=0.6)
+        if d.get("ida", True):  # the empirical CDF of the records' collapse intensities
+            ax.step(d["x"], d["fraction"], where="post", color=style["color"], lw=0.8,
+                    alpha=0.6)
         ax.plot(d["x"], d["fraction"], "o", color=style["color"], ms=3)
         if np.isfinite(d["theta"]) and np.isfinite(d["beta"]):
             p = ndtr(np.log(grid / d["theta"]) / d["beta"])
@@ -87,7 +90,7 @@ def plot_fragilities(curves, path, im_label, s_mt=None):
     ax.set_xlabel(im_label)
     ax.set_ylabel("P(collapse)")
     ax.set_xlim(0, top)
-    ax.set_ylim(0, 1.02)
+    ax.set_ylim(-0.02, 1.02)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     _save(fig, path, plt)

@@ -76,5 +76,5 @@ def collapse_row(rows, use, meta, ida, p695_args):
         if lower and a and not a[k]:
             row[names[k]] = "inconclusive"
     row["note"] = "; ".join(notes)
-    curve = dict(x=pts, fraction=frac, theta=theta, beta=beta, n_collapsed=n_col, n=n)
+    curve = dict(x=pts, fraction=frac, theta=theta, beta=beta, n_collapsed=n_col, n=n, ida=ida)
     return row, curve
