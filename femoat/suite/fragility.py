@@ -75,24 +75,24 @@ def fit_ida(collapse_im, censored_im=()):
     if np.ptp(ln_x) == 0.0:
         raise FragilityError(f"all {x.size} collapse intensities equal {x[0]:.4g} g: β = 0")
     mu, beta = ln_x.mean(), ln_x.std()
-    note = ""
+    notes = []
     if c.size:
         res = optimize.minimize(ida_negloglik, [mu, np.log(beta)], args=(ln_x, ln_c),
                                 method="BFGS", options=dict(gtol=1e-10))
         if not np.all(np.isfinite(res.x)) or res.x[1] > np.log(50.0):
             raise FragilityError("the censored IDA likelihood has no finite maximum")
         mu, beta = res.x[0], float(np.exp(res.x[1]))
-        note = f"{c.size} record(s) never collapsed: right-censored at their largest IM"
+        notes.append(f"{c.size} record(s) never collapsed: right-censored at their largest IM")
     med = ida_empirical_median(x, c)
     if not np.isfinite(med):
-        note += "; empirical median undefined: half or more of the records never collapsed"
+        notes.append("empirical median undefined: half or more of the records never collapsed")
     return Fragility(float(np.exp(mu)), float(beta), med, x.size + c.size, x.size, c.size, "ida",
-                     note)
+                     "; ".join(notes))
 
 
 def ida_empirical_median(x, c):
-    """Median with the censored records counted above every collapse; NaN when it falls on a
-    censored record (over half the records never collapsed)."""
+    """Median [g] of collapse intensities ``x`` with the censored records ``c`` counted above
+    every collapse; NaN when it falls on a censored record (half or more never collapsed)."""
     x, c = np.asarray(x, float), np.asarray(c, float)
     if x.size + c.size == 0:
         return float("nan")
