@@ -68,6 +68,7 @@ class RunResult:
             element_dashpots=story_c,
             contact_names=list(packed.c_names),
             gaps=[float(g) for g in packed.c_gap],
+            story_heights=[float(h) for h in packed.story_heights],
             walls=wall_cols,
             stats=hist.stats,
             energy=hist.energy,
@@ -185,9 +186,14 @@ class RunResult:
             "impacts_neg": sum(r["side"] == "neg" for r in imp),
             "peak_base_displacement": float(np.abs(self.base_displacement).max()),
             "peak_wall_displacement": float(np.abs(wall).max()) if wall.size else 0.0,
+            **{f"peak_wall_displacement_{name}": float(np.abs(wall[:, c]).max())
+               for c, name in enumerate(self.meta["contact_names"])},
             "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
             "peak_impulse": max((r["impulse"] for r in imp), default=0.0),
             "peak_drift": [float(x) for x in np.abs(self.story_drifts()).max(axis=0)],
+            "peak_drift_ratio": [float(x) / h for x, h in
+                                 zip(np.abs(self.story_drifts()).max(axis=0),
+                                     self.meta.get("story_heights", []))],
             "peak_floor_acceleration": [float(x) for x in (np.abs(acc[:, 1:ns]).max(axis=0) / G)]
             if acc is not None else None,
             "peak_base_acceleration": float(np.abs(acc[:, 0]).max() / G) if acc is not None else None,
@@ -207,6 +213,13 @@ class RunResult:
     def peaks(self):
         """Peak summary (JSON-ready)."""
         return self.meta["peaks"]
+
+    @property
+    def collapse(self):
+        """Collapse criteria reached (:func:`femoat.collapse.collapse_summary`): the first
+        time [s] of each (None: not reached), ``collapsed`` and ``stopped``; None when the run
+        checked no criteria."""
+        return self.meta.get("collapse")
 
     @property
     def energy(self):

@@ -2,6 +2,7 @@
 
 import math
 
+from femoat.collapse import CollapseCriteria, collapse_summary
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.results import RunResult
@@ -9,7 +10,7 @@ from femoat.structure.pounding import PoundingModel
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
-        progress=None, channels=None, backend="auto"):
+        progress=None, channels=None, backend="auto", collapse=None):
     """Integrate ``model`` under ``motion`` and return a :class:`~femoat.results.RunResult`.
 
     Parameters
@@ -34,6 +35,10 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     backend : str
         Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
         "aot" (see :mod:`femoat.aot`); the results are identical.
+    collapse : CollapseCriteria or None
+        Limit states to check after every step (:mod:`femoat.collapse`); their first times are
+        in ``result.collapse``, and the run ends at the first one unless ``collapse.stop`` is
+        False. None checks nothing (``result.collapse`` is then None).
     """
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
@@ -44,10 +49,18 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     integ = integrator or Integrator()
     packed = model.pack()
     kw = {} if channels is None else dict(channels=tuple(channels))
+    if collapse is not None:
+        if not isinstance(collapse, CollapseCriteria):
+            raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
+        kw.update(limits=collapse.limits(model, packed), stop_at_limit=collapse.stop)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
                  progress=progress, backend=backend, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],
                 wall_damping=[getattr(w.wall, "damping_source", "modal") for w in model.walls])
-    return RunResult.from_history(hist, packed, info)
+    result = RunResult.from_history(hist, packed, info)
+    if collapse is not None:
+        result.meta["collapse"] = collapse_summary(hist.limit_times, packed,
+                                                   hist.stopped_at_limit)
+    return result

@@ -8,6 +8,9 @@ Every table and key is optional; omitted values take the defaults of the paper s
     story_model = "bilinear"      # "elastic" | "bilinear" | "imk"
     story_damping_ratio = 0.02    # [-] at story_damping_period [s]
     story_damping_period = 0.30
+    story_heights = [39.0, 39.0, 39.0]   # [in], bottom to top (assumed quarter-scale default)
+    p_delta = false               # story geometric stiffness −P/h (gravity of floors above)
+    isolator_capacity = 7.0       # [in] isolator displacement capacity (collapse criterion)
 
     [building.story]              # parameters of the story material (per story_model)
     k0 = 42.799                   # [kip/in] (K0 for imk)
@@ -53,6 +56,13 @@ Every table and key is optional; omitted values take the defaults of the paper s
     max_step = 0.0025             # [s] (default: the record's sample interval)
     record_every = 1
 
+    [collapse]                    # optional: limit states checked every step (femoat.collapse)
+    drift_ratio = 0.10            # [-] story drift ratio; omit for none
+    isolator = true               # isolator displacement above isolator_capacity
+    wall_displacement = 2.0       # [in] at the impact point; omit for none
+    wall_force = 300.0            # [kip] contact force; omit for none
+    stop = true                   # end the run at the first criterion reached
+
     [output]
     folder = "femoat_output"
     figures = true
@@ -71,7 +81,9 @@ from femoat.walls.presets import wall_preset
 
 _KNOWN = {
     "building": {"base_weight", "floor_weights", "story_model", "story_damping_ratio",
-                 "story_damping_period", "story", "isolator"},
+                 "story_damping_period", "story", "isolator", "story_heights", "p_delta",
+                 "isolator_capacity"},
+    "collapse": {"drift_ratio", "isolator", "wall_displacement", "wall_force", "stop"},
     "walls": {"preset", "damping", "law", "gap", "sides", "calibrate", "calibrate_v0", "fe"},
     "walls.fe": {"geometry", "mesh", "model", "modes", "flexibility", "residual",
                  "damping_ratio"},
@@ -91,6 +103,7 @@ class Scenario:
     motion: object
     integrator: Integrator
     extra_time: float
+    collapse: object
     output_folder: Path
     figures: bool
     source: dict
@@ -122,12 +135,30 @@ def building_from_dict(d):
         raise ValueError(f"[building] story_model = {model!r}: use 'elastic', 'bilinear' or 'imk'.")
     iso = dict(d.get("isolator", {}))
     iso.setdefault("W", base + sum(floors))
+    heights = d.get("story_heights")
+    if heights is not None:
+        if not isinstance(heights, list):
+            raise ValueError(f"[building] story_heights = {heights!r} must be a list of heights "
+                             "[in], one per story.")
+        heights = tuple(heights)
     return Building(
         base_weight=base, floor_weights=floors, isolator=FrictionPendulum(**iso),
         stories=tuple(mat for _ in floors),
         story_damping_ratio=float(d.get("story_damping_ratio", 0.02)),
         story_damping_period=float(d.get("story_damping_period", 0.30)),
+        story_heights=heights,
+        p_delta=d.get("p_delta", False),
+        isolator_capacity=d.get("isolator_capacity", 7.0),
     )
+
+
+def collapse_from_dict(d):
+    """The :class:`~femoat.collapse.CollapseCriteria` of a ``[collapse]`` table."""
+    from femoat.collapse import CollapseCriteria
+
+    d = dict(d)
+    _check_keys(d, _KNOWN["collapse"], "[collapse]")
+    return CollapseCriteria(**d)
 
 
 def walls_from_dict(d, base_dir=Path("."), base_mass=None):
@@ -249,8 +280,9 @@ def scenario_from_dict(d, base_dir=Path(".")):
     integ = Integrator(**solver)
     out = dict(d.get("output", {}))
     _check_keys(out, _KNOWN["output"], "[output]")
+    collapse = collapse_from_dict(d["collapse"]) if "collapse" in d else None
     return Scenario(model=model, motion=motion, integrator=integ,
-                    extra_time=float(motion_d.get("extra_time", 2.0)),
+                    extra_time=float(motion_d.get("extra_time", 2.0)), collapse=collapse,
                     output_folder=Path(out.get("folder", "femoat_output")),
                     figures=bool(out.get("figures", True)), source=d)
 

@@ -27,7 +27,8 @@ def run(args):
 
     sc = load_scenario(args.scenario)
     out = args.out or sc.output_folder
-    result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time)
+    result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time,
+                       collapse=sc.collapse)
     result.save(out / "run.npz")
     from femoat.paper import write_outputs
 

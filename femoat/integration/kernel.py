@@ -44,15 +44,17 @@ from femoat.contact.kernels import (  # noqa: E402
 from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
 # Status codes returned by run_chunk.
-DONE, STOPPED, BUFFER_FULL, NEWTON_FAILED, STEP_TOO_SMALL = 0, 1, 2, 3, 4
+DONE, STOPPED, BUFFER_FULL, NEWTON_FAILED, STEP_TOO_SMALL, LIMIT_REACHED = 0, 1, 2, 3, 4, 5
 
 # Float options (fopt)
 F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCONTACT, \
     F_GAPTOL = range(11)
 N_FOPT = 11
 # Integer options (iopt)
-I_MAXIT, I_RECORD_EVERY, I_N_COUPLED = 0, 1, 2
-N_IOPT = 3
+I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_LIMITS, I_N_STRUCT = 0, 1, 2, 3, 4
+N_IOPT = 5
+# I_LIMITS: what the limit states (collapse criteria) do
+LIMITS_OFF, LIMITS_RECORD, LIMITS_STOP = 0, 1, 2
 # Stats (stats), integer
 S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS, S_FAIL_INFO = range(7)
 N_STATS = 7
@@ -250,12 +252,42 @@ def _crossing(d0, dd0, d1, dd1, h):
 
 
 @njit(cache=True)
+def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
+    """Record the first time each limit is exceeded; True when one is exceeded now.
+
+    ``limits`` holds, per element, a bound on |deformation| [in], then per contact a bound on
+    the wall's displacement at the impact point [in], then per contact a bound on the contact
+    force [kip] (math.inf: none); ``first`` the time each was first exceeded (−1: not yet).
+    """
+    nel, ncon = el_d.size, c_f.size
+    hit = False
+    for e in range(nel):
+        if abs(el_d[e]) > limits[e]:
+            hit = True
+            if first[e] < 0.0:
+                first[e] = t
+    for c in range(ncon):
+        w = 0.0
+        for i in range(n_struct, u.size):
+            w -= c_B[c, i] * u[i]
+        if abs(w) > limits[nel + c]:
+            hit = True
+            if first[nel + c] < 0.0:
+                first[nel + c] = t
+        if c_f[c] > limits[nel + ncon + c]:
+            hit = True
+            if first[nel + ncon + c] < 0.0:
+                first[nel + ncon + c] = t
+    return hit
+
+
+@njit(cache=True)
 def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
               M, C, K, r, ag,
               el_i, el_j, el_code, el_P, el_S, el_f, el_d, el_W,
               c_B, c_gap, c_code, c_P, c_H, c_f, c_d, c_W, c_closed,
               scale_open, scale_contact, fopt, iopt,
-              energy, stats,
+              energy, stats, limits, first_exceed,
               out_t, out_u, out_v, out_a, out_ag, out_ef, out_ed, out_cf, out_cd, out_cv,
               out_closed,
               w_u, w_v, w_a, w_F, w_KT, w_CT, w_A, w_b, w_ef, w_ed, w_cf, w_cd):
@@ -265,6 +297,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
     rtol, hmax, hmin, ntol = fopt[F_RTOL], fopt[F_HMAX], fopt[F_HMIN], fopt[F_NTOL]
     t_end, dt_rec, h_contact, gap_tol = fopt[F_TEND], fopt[F_DTREC], fopt[F_HCONTACT], fopt[F_GAPTOL]
     maxit, rec_every = iopt[I_MAXIT], iopt[I_RECORD_EVERY]
+    limit_mode = iopt[I_LIMITS]
     # Lazy wall work: while no contact carries force, the wall DOFs (diagonal modal blocks) are
     # uncoupled from the building: dense elimination on the first n_coupled DOFs only, one
     # division per wall mode.
@@ -634,6 +667,12 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 out_cv[k, c] = dd1
                 out_closed[k, c] = c_closed[c]
             stats[S_NOUT] = k + 1
+        if limit_mode != LIMITS_OFF:
+            if _check_limits(t, u, el_d, c_f, c_B, iopt[I_N_STRUCT], limits, first_exceed) \
+                    and limit_mode == LIMITS_STOP:
+                state_t[0] = t
+                h_state[0] = h
+                return LIMIT_REACHED
     state_t[0] = t
     h_state[0] = h
     return DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED

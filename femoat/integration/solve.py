@@ -31,13 +31,17 @@ class RawHistory:
     closed: np.ndarray
     stats: dict
     energy: dict
+    limit_times: np.ndarray
+    """First time [s] each limit of ``limits`` was exceeded (NaN: never)."""
+    stopped_at_limit: bool
 
 
 CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-          chunks=None, lazy=True, channels=CHANNELS, backend="auto"):
+          chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
+          stop_at_limit=False):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -65,6 +69,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     backend : str
         "auto" (the ahead-of-time compiled kernels of :mod:`femoat.aot` when built, else numba's
         JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
+    limits : array or None
+        Limit states checked after every step: per element a bound on |deformation| [in], then
+        per contact a bound on the wall displacement at the impact point [in], then per contact
+        a bound on the contact force [kip] (math.inf: none). None checks nothing.
+    stop_at_limit : bool
+        End the run at the first step that exceeds a limit (``RawHistory.stopped_at_limit``).
     """
     kern, backend = kernels(backend)
     packed = _canonical(packed)
@@ -108,12 +118,22 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     fopt[kn.F_DTREC] = dt_rec
     fopt[kn.F_HCONTACT] = h_contact
     fopt[kn.F_GAPTOL] = 1e-3 * integ.rtol * d_me
-    iopt = np.array([integ.max_newton, integ.record_every, _uncoupled_size(packed, lazy)],
-                    dtype=np.int64)
+    nel, ncon = packed.el_code.size, packed.c_code.size
+    if limits is None:
+        limit_mode = kn.LIMITS_OFF
+        limits = np.full(nel + 2 * ncon, np.inf)
+    else:
+        limits = np.array(limits, dtype=float)
+        if limits.shape != (nel + 2 * ncon,) or np.any(np.isnan(limits)) or np.any(limits <= 0):
+            raise ValueError(f"limits must hold {nel + 2 * ncon} positive bounds (elements, wall "
+                             "displacements, contact forces; inf for none).")
+        limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
+    first_exceed = np.full(limits.size, -1.0)
+    iopt = np.array([integ.max_newton, integ.record_every, _uncoupled_size(packed, lazy),
+                     limit_mode, packed.n_struct], dtype=np.int64)
 
     # working copies of states (the packed model stays reusable)
     el_S, c_H = packed.el_S.copy(), packed.c_H.copy()
-    nel, ncon = packed.el_code.size, packed.c_code.size
     el_f, el_d, el_W = np.zeros(nel), np.zeros(nel), np.zeros(nel)
     c_f, c_d, c_W = np.zeros(ncon), np.zeros(ncon), np.zeros(ncon)
     c_closed = np.zeros(ncon, dtype=np.int64)
@@ -162,7 +182,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             packed.M, packed.C, packed.K, packed.r, ag,
             packed.el_i, packed.el_j, packed.el_code, packed.el_P, el_S, el_f, el_d, el_W,
             packed.c_B, packed.c_gap, packed.c_code, packed.c_P, c_H, c_f, c_d, c_W, c_closed,
-            scale_open, scale_contact, fopt, iopt, energy, stats,
+            scale_open, scale_contact, fopt, iopt, energy, stats, limits, first_exceed,
             *[bufs[key] for key in _BUF_KEYS],
             w["u"], w["v"], w["a"], w["F"], w["KT"], w["CT"], w["A"], w["b"], w["ef"], w["ed"],
             w["cf"], w["cd"],
@@ -176,7 +196,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                                                stalled=status == kn.STEP_TOO_SMALL))
         if progress is not None:
             progress(state_t[0], duration)
-        if status == kn.DONE:
+        if status in (kn.DONE, kn.LIMIT_REACHED):
             break
         k = min(k + 1, chunks - 1)
     cpu = _time.process_time() - cpu0
@@ -199,9 +219,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
-                   cpu_seconds=cpu, recorded=int(m), kernels=backend),
+                   cpu_seconds=cpu, recorded=int(m), kernels=backend,
+                   t_reached=float(state_t[0])),
         energy=_energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy,
                        e_initial),
+        limit_times=np.where(first_exceed >= 0.0, first_exceed, np.nan),
+        stopped_at_limit=bool(status == kn.LIMIT_REACHED),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist

@@ -8,13 +8,22 @@ values are femoat's, and every one is a parameter):
 * isolation: one friction pendulum, R = 30 in, W = 33 kip, μ = 0.06, u_y = 0.01 in;
 * stories: bilinear shear springs k0 = 42.799 kip/in (fixed-base T1 = 0.30 s), Fy = 11.556 kip
   (yield drift 0.27 in), hardening 0.03;
-* damping: a dashpot c = β·k0 in parallel with each story, β = 2·0.02/ω1, ω1 = 2π/0.30 s.
+* damping: a dashpot c = β·k0 in parallel with each story, β = 2·0.02/ω1, ω1 = 2π/0.30 s;
+* story heights [in]: 39.0 each, an assumption (a 13 ft prototype story at quarter scale; the
+  paper gives none); they turn drifts into drift ratios and set the P-Delta stiffness;
+* P-Delta off (the paper's model); on, every story carries the gravity load of the floors above
+  it as a negative geometric stiffness −P/h (exact linear P-Delta of a shear story);
+* isolator displacement capacity 7.0 in (the test bearings', PAPER.md §4).
 """
 
 import math
 from dataclasses import dataclass, field
 
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+
+
+DEFAULT_STORY_HEIGHT = 39.0
+"""Story height of the quarter-scale frame [in] (assumed: a 13 ft story at 1:4)."""
 
 
 def _default_stories():
@@ -53,6 +62,13 @@ class Building:
         with each story, β = 2ξ/ω1, ω1 = 2π/T1.
     story_damping_period : float
         Fixed-base first period T1 [s] used for β.
+    story_heights : tuple of float or None
+        Story heights [in], bottom to top; None: 39.0 in per story (assumed, see module).
+    p_delta : bool
+        Add each story's geometric stiffness −P_k/h_k, P_k the weight of floors k and above
+        [kip] (linear P-Delta; the buckling load of an elastic story is k·h).
+    isolator_capacity : float
+        Displacement capacity of the isolator [in] (a collapse criterion, see femoat.collapse).
     """
 
     base_weight: float = 10.0
@@ -61,6 +77,9 @@ class Building:
     stories: tuple = field(default_factory=_default_stories)
     story_damping_ratio: float = 0.02
     story_damping_period: float = 0.30
+    story_heights: tuple | None = None
+    p_delta: bool = False
+    isolator_capacity: float = 7.0
 
     def __post_init__(self):
         if not (math.isfinite(self.base_weight) and self.base_weight > 0):
@@ -82,6 +101,37 @@ class Building:
         if not (math.isfinite(self.story_damping_period) and self.story_damping_period > 0):
             raise ValueError(
                 f"story_damping_period = {self.story_damping_period!r} must be a positive period [s].")
+        if self.story_heights is not None:
+            if len(self.story_heights) != len(self.floor_weights):
+                raise ValueError(f"story_heights: {len(self.story_heights)} heights for "
+                                 f"{len(self.floor_weights)} floors; give one height [in] per story.")
+            for i, h in enumerate(self.story_heights):
+                if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0):
+                    raise ValueError(f"story_heights[{i}] = {h!r} must be a positive height [in].")
+        if not isinstance(self.p_delta, bool):
+            raise ValueError(f"p_delta = {self.p_delta!r} must be true or false.")
+        if not (isinstance(self.isolator_capacity, (int, float))
+                and self.isolator_capacity > 0 and not math.isnan(self.isolator_capacity)):
+            raise ValueError(f"isolator_capacity = {self.isolator_capacity!r} must be a positive "
+                             "displacement [in] (math.inf for none).")
+
+    @property
+    def heights(self):
+        """Story heights [in], bottom to top (the default where none were given)."""
+        if self.story_heights is None:
+            return tuple(DEFAULT_STORY_HEIGHT for _ in self.floor_weights)
+        return tuple(float(h) for h in self.story_heights)
+
+    def gravity_loads(self):
+        """Axial (gravity) load on each story [kip]: the weight of its floor and those above."""
+        w = self.floor_weights
+        return tuple(float(sum(w[k:])) for k in range(len(w)))
+
+    def geometric_stiffnesses(self):
+        """P-Delta stiffness of each story [kip/in]: −P_k/h_k, or zeros without P-Delta."""
+        if not self.p_delta:
+            return tuple(0.0 for _ in self.floor_weights)
+        return tuple(-p / h for p, h in zip(self.gravity_loads(), self.heights))
 
     @property
     def total_weight(self):

