@@ -46,6 +46,7 @@ def _quiet():
 
 
 def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
+    from femoat.collapse import CollapseCriteria
     from femoat.ground_motions import GroundMotion, read_at2, response_spectrum
     from femoat.run import run
     from femoat.scenario import building_from_dict, walls_from_dict
@@ -75,8 +76,12 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
     assert row["scale_factor"] == factor
     building = building_from_dict({})
     model = PoundingModel(building, walls_from_dict({"law": "H"}, base_mass=building.base_weight / G))
-    ref = run(model, gm.scaled(factor).time_scaled(0.5), extra_time=0.5)
+    # the suite's default criteria: drift ratio 0.10, isolator capacity 7 in, stop at collapse
+    ref = run(model, gm.scaled(factor).time_scaled(0.5), extra_time=0.5,
+              collapse=CollapseCriteria())
     p = ref.peaks
+    assert row["collapsed"] == ref.collapse["collapsed"]
+    assert row["t_reached"] == ref.time[-1]
     assert row["peak_impact_force_pos"] == p["peak_impact_force_pos"]
     assert row["peak_impact_force_neg"] == p["peak_impact_force_neg"]
     assert row["peak_base_displacement"] == p["peak_base_displacement"]

@@ -99,15 +99,11 @@ class Suite:
         """suite.json: the definition, its hash and what the report needs."""
         from femoat import __version__
 
-        from femoat.suite.model import has_model_api
-
         s = self.scaling
-        detection = ("in the run (femoat.collapse)" if has_model_api() else
-                     "on the finished history; p_delta ignored (TODO: model API not on main yet)")
         sets = {r.record_set for r in self.records}
         record_set = self.source["records"].get("set") if len(sets) > 1 else sets.pop()
         return dict(suite_hash=self.hash, femoat_version=__version__,
-                    collapse_detection=detection, definition=self.source,
+                    definition=self.source,
                     varied=list(self.varied), variations=list(self.combos),
                     record_set=record_set, im_kind=s.im_kind, scaling=s.method,
                     hunt_fill=s.hunt is not None, scaling_detail=s.summary(),

@@ -106,11 +106,6 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
     unit = "runs" if suite.scaling.hunt is None else "traces"
     summary = dict(out=str(out), suite_hash=suite.hash, todo=total, unit=unit, runs=0,
                    collapses=0, failures=0, failed_tasks=0, kernels=_kernels(stream))
-    from femoat.suite.model import has_model_api
-
-    if not has_model_api():  # TODO(model API): remove with the stand-in of femoat.suite.model
-        stream.write("femoat suite: collapse is checked on each finished history and p_delta is "
-                     "ignored until the model API (femoat.collapse) is merged\n")
     if not tasks:
         stream.write(f"femoat suite: nothing to do, every run is stored in {out}\n")
         return summary

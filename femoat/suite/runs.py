@@ -17,7 +17,8 @@ import numpy as np
 
 from femoat.suite import variations as var
 from femoat.suite.huntfill import hunt_fill
-from femoat.suite.model import CRITERIA, build_model, run_model
+from femoat.collapse import CRITERIA
+from femoat.suite.model import build_model, run_model
 from femoat.suite.records import applied_motion
 
 
@@ -157,8 +158,7 @@ def _outcome(suite, result, collapse, model):
     p = result.peaks
     n = len(model.story_heights)
     drift = np.asarray(p["peak_drift"], dtype=float)
-    ratio = np.asarray(p["peak_drift_ratio"] if "peak_drift_ratio" in p
-                       else drift / np.asarray(model.story_heights), dtype=float)
+    ratio = np.asarray(p["peak_drift_ratio"], dtype=float)
     floor = p.get("peak_floor_acceleration") or [math.nan] * n
     out = dict(status="collapsed" if collapse["collapsed"] else "ok",
                collapsed=bool(collapse["collapsed"]))
@@ -170,12 +170,8 @@ def _outcome(suite, result, collapse, model):
                peak_impact_force_neg=p["peak_impact_force_neg"],
                impacts_pos=int(p["impacts_pos"]), impacts_neg=int(p["impacts_neg"]),
                peak_base_displacement=p["peak_base_displacement"])
-    for side in ("pos", "neg"):
-        try:
-            out[f"peak_wall_displacement_{side}"] = float(
-                np.abs(result.wall_displacement(side)).max())
-        except (KeyError, ValueError):  # no wall on that side
-            out[f"peak_wall_displacement_{side}"] = math.nan
+    for side in ("pos", "neg"):  # NaN where there is no wall on that side
+        out[f"peak_wall_displacement_{side}"] = p.get(f"peak_wall_displacement_{side}", math.nan)
     for k in range(suite.n_stories):
         inside = k < n
         out[f"peak_drift_{k + 1}"] = float(drift[k]) if inside else math.nan

@@ -21,7 +21,7 @@ an interrupted suite loses at most the batches in flight. Units: forces [kip], d
 import hashlib
 from pathlib import Path
 
-from femoat.suite.model import CRITERIA
+from femoat.collapse import CRITERIA
 
 IDENTITY = [("run_id", "string"), ("suite_hash", "string"), ("femoat_version", "string"),
             ("record", "string"), ("variation", "string"), ("record_set", "string"),

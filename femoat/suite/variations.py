@@ -17,14 +17,11 @@ def allowed_keys():
     """{table path: allowed keys} of the model tables (from femoat.scenario and the materials)."""
     from femoat import scenario
     from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
-    from femoat.suite.model import building_keys, collapse_keys
 
     known = {k: set(v) for k, v in scenario._KNOWN.items() if k.split(".")[0] in MODEL_TABLES}
-    known["building"] = building_keys()
     known["building.story"] = {f.name for m in (Elastic, Bilinear, IMKBilinear)
                                for f in dataclasses.fields(m)} | {"k0"}
     known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}
-    known["collapse"] = collapse_keys()
     return known
 
 
