@@ -53,10 +53,13 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
                                   # "collapse" | "exclude" (stored in suite.json)
 
 The suite hash covers everything that changes a result (model, records and their samples,
-variations, scaling, durations, femoat's version), not the ``[run]`` keys except
-``stop_on_collapse``.
+variations, scaling, durations, femoat's version and a fingerprint of the sources that compute
+a run: :func:`code_version`), not the ``[run]`` keys except ``stop_on_collapse``. So a suite
+folder never mixes rows of two model versions: after an edit to the model the suite is refused
+(``--out`` elsewhere or ``--overwrite``).
 """
 
+import functools
 import hashlib
 import json
 import math
@@ -94,15 +97,14 @@ class Suite:
     solver_failure: str
     n_stories: int
     hash: str = field(default="")
+    code: str = field(default="")  # code_version() of the process that defined the suite
 
     def metadata(self):
         """suite.json: the definition, its hash and what the report needs."""
-        from femoat import __version__
-
         s = self.scaling
         sets = {r.record_set for r in self.records}
         record_set = self.source["records"].get("set") if len(sets) > 1 else sets.pop()
-        return dict(suite_hash=self.hash, femoat_version=__version__,
+        return dict(suite_hash=self.hash, femoat_version=code_version(),
                     definition=self.source,
                     varied=list(self.varied), variations=list(self.combos),
                     record_set=record_set, im_kind=s.im_kind, scaling=s.method,
@@ -113,6 +115,28 @@ class Suite:
                     "period x time_scale",
                     period=s.period, smt=s.smt, sdc=s.sdc,
                     solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse)
+
+
+_NOT_RESULTS = ("commands", "plotting", "render", "opensees", "suite")
+
+
+@functools.lru_cache(maxsize=1)
+def code_version():
+    """femoat's version and a fingerprint of the sources that can change a run's result
+    (everything but the command line, plotting, rendering, OpenSees and the suite machinery
+    itself besides its run path), e.g. ``0.1.0+1a2b3c4d``."""
+    from femoat import __version__
+
+    root = Path(__file__).resolve().parents[1]
+    h = hashlib.sha256()
+    files = [p for p in sorted(root.rglob("*.py"))
+             if p.relative_to(root).parts[0] not in _NOT_RESULTS]
+    files += [root / "suite" / name for name in ("model.py", "records.py", "runs.py",
+                                                  "scaling.py")]
+    for p in files:
+        h.update(p.relative_to(root).as_posix().encode())
+        h.update(p.read_bytes())
+    return f"{__version__}+{h.hexdigest()[:8]}"
 
 
 def load_suite(path=None):
@@ -129,7 +153,6 @@ def load_suite(path=None):
 
 def suite_from_dict(d, base_dir=Path(".")):
     """Validate a parsed suite document; returns a :class:`Suite`."""
-    from femoat import __version__
     from femoat.scenario import _check_keys
     from femoat.suite.model import build_model
 
@@ -174,7 +197,8 @@ def suite_from_dict(d, base_dir=Path(".")):
     key = dict(model=tables, records=[(r.label, r.digest) for r in refs],
                time_scale=time_scale, duration=duration, extra_time=extra_time,
                variations=d.get("variations", {}), scaling=d.get("scaling", {}),
-               stop_on_collapse=stop, femoat=__version__)
+               stop_on_collapse=stop, femoat=code_version())
+    object.__setattr__(suite, "code", code_version())
     digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
     object.__setattr__(suite, "hash", digest[:16])
     return suite

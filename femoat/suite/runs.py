@@ -72,8 +72,12 @@ def _model(suite, var_index):
 def warm(suite):
     """Build every variation's model and load the first record (for a FEMA P695 suite, its
     whole set) in this process, so that the first runs do not pay for it."""
+    from femoat.suite.definition import code_version
     from femoat.suite.records import load_motion
 
+    if code_version() != suite.code:
+        raise RuntimeError(f"this worker runs femoat {code_version()}, the suite was defined "
+                           f"with {suite.code}: install the same femoat on every worker.")
     for v in range(len(suite.combos)):
         _model(suite, v)
     load_motion(suite.records[0])
@@ -134,11 +138,11 @@ def _describe(suite, s):
 
 
 def _identity(suite, s):
-    from femoat import __version__
+    from femoat.suite.definition import code_version
 
     r, sc = suite.records[s.rec], suite.scaling
     factor = sc.factor(s.rec, s.im)
-    row = dict(run_id=s.run_id, suite_hash=suite.hash, femoat_version=__version__,
+    row = dict(run_id=s.run_id, suite_hash=suite.hash, femoat_version=code_version(),
                record=r.label, variation=var.label(suite.combos[s.var]),
                record_set=r.record_set, record_id=r.record_id, rsn=r.rsn,
                record_name=r.record_name, component=r.component, earthquake=r.earthquake,
