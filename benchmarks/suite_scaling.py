@@ -1,6 +1,6 @@
 """How a suite scales on Dask: measured and printed, never asserted.
 
-    python benchmarks/suite_scaling.py [--levels 4] [--keep DIR]
+    python benchmarks/suite_scaling.py [--levels 12] [--repeat 2] [--keep DIR]
 
 The same suite (3 PEER records of tests/data/peer, full length, 5 laws x 2 walls, IDA stripes
 on Sa(3.5 s prototype)) is run
@@ -61,7 +61,7 @@ def plain_loop(suite):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--levels", type=int, default=4, help="stripes per record (default 4)")
+    ap.add_argument("--levels", type=int, default=12, help="stripes per record (default 12)")
     ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
@@ -71,7 +71,7 @@ def main():
     aot.ensure()
     work = Path(args.keep or tempfile.mkdtemp(prefix="femoat-suite-bench-"))
     work.mkdir(parents=True, exist_ok=True)
-    levels = [round(0.25 * (k + 1), 2) for k in range(args.levels)]
+    levels = [round(0.1 * (k + 1), 2) for k in range(args.levels)]
     path = work / "suite.toml"
     path.write_text(SUITE.format(folder=(ROOT / "tests/data/peer").as_posix(), levels=levels))
     suite = load_suite(path)

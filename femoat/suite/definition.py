@@ -46,7 +46,7 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     # targets = [0.3, 0.6]        # pga: PGA [g]
 
     [run]                         # how, not what: none of these changes a result
-    batch_size = 24               # runs per task (default: ~0.5 s of runs, >= 4 tasks/worker)
+    batch_size = 48               # runs per task (default: <= 48, >= 4 tasks per worker)
     histories = ["<run_id>"]      # runs whose full history is saved (DIR/histories/<id>.npz)
     stop_on_collapse = true       # stop a run at collapse (default for [collapse] stop)
     solver_failure = "separate"   # how the report counts solver failures: "separate" |
