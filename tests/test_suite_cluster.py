@@ -57,7 +57,7 @@ def cluster(tmp_path):
 
         with Client(address, timeout=60) as client:
             client.wait_for_workers(2, timeout=60)
-        yield address
+        yield address, file
     finally:
         for p in procs:  # only the processes started here, by their ids
             p.kill()
@@ -68,7 +68,8 @@ def test_suite_on_a_two_worker_cluster_equals_the_serial_run(cluster, tmp_path):
     path = tmp_path / "suite.toml"
     path.write_text(SUITE, encoding="utf-8")
     suite = load_suite(path)
-    summary = run_suite(suite, tmp_path / "dask", scheduler=cluster, stream=io.StringIO())
+    address, scheduler_file = cluster
+    summary = run_suite(suite, tmp_path / "dask", scheduler=address, stream=io.StringIO())
     # 3 records x 2 laws x 2 PGAs = 12 runs in 6 batches of 2
     assert summary["runs"] == 12 and summary["failed_tasks"] == 0
     assert len(list((tmp_path / "dask" / "runs").glob("part-*.parquet"))) == 6
@@ -77,3 +78,11 @@ def test_suite_on_a_two_worker_cluster_equals_the_serial_run(cluster, tmp_path):
     got, want = (load_table(tmp_path / d).sort_values("run_id").reset_index(drop=True)
                  .drop(columns=timing) for d in ("dask", "serial"))
     pd.testing.assert_frame_equal(got, want)
+    # lose half the parts, resume through the scheduler file: the same table again
+    for part in sorted((tmp_path / "dask" / "runs").glob("part-*.parquet"))[:3]:
+        part.unlink()
+    again = run_suite(suite, tmp_path / "dask", scheduler_file=scheduler_file,
+                      stream=io.StringIO())
+    assert again["todo"] == 6 and again["runs"] == 6
+    got = load_table(tmp_path / "dask").sort_values("run_id").reset_index(drop=True)
+    pd.testing.assert_frame_equal(got.drop(columns=timing), want)
