@@ -163,7 +163,8 @@ def _outcome(suite, result, collapse, model):
     n = len(model.story_heights)
     drift = np.asarray(p["peak_drift"], dtype=float)
     ratio = np.asarray(p["peak_drift_ratio"], dtype=float)
-    floor = p.get("peak_floor_acceleration") or [math.nan] * n
+    floor = p.get("peak_floor_acceleration")
+    floor = [math.nan] * n if floor is None else floor
     out = dict(status="collapsed" if collapse["collapsed"] else "ok",
                collapsed=bool(collapse["collapsed"]))
     for c in CRITERIA:
@@ -182,9 +183,13 @@ def _outcome(suite, result, collapse, model):
         out[f"peak_drift_ratio_{k + 1}"] = float(ratio[k]) if inside else math.nan
         out[f"peak_floor_acceleration_{k + 1}"] = float(floor[k]) if inside else math.nan
     out.update(peak_drift_ratio=float(ratio.max(initial=0.0)),
-               peak_base_acceleration=p.get("peak_base_acceleration") or math.nan,
+               peak_base_acceleration=_nan_if_none(p.get("peak_base_acceleration")),
                pounding=bool(p["impacts_pos"] + p["impacts_neg"] > 0),
                t_reached=float(result.time[-1]),
                solver_seconds=float(result.meta["stats"]["cpu_seconds"]),
                steps=int(p["steps"]))
     return out
+
+
+def _nan_if_none(x):
+    return math.nan if x is None else float(x)

@@ -15,7 +15,9 @@ an interrupted suite loses at most the batches in flight. Units: forces [kip], d
 * peaks: peak_impact_force_pos/neg, impacts_pos/neg, peak_base_displacement,
   peak_wall_displacement_pos/neg, peak_drift_<k>, peak_drift_ratio_<k>, peak_drift_ratio (max
   over stories), peak_floor_acceleration_<k>, peak_base_acceleration, pounding (any impact),
-  t_reached, cpu_seconds (the whole run, in its worker thread), solver_seconds, steps.
+  t_reached (the run's last time: the collapse time when it stopped there), cpu_seconds (CPU
+  of the whole run in its thread: model lookup, record scaling, solver, peaks), solver_seconds
+  (process CPU of the compiled loop, from the solver), steps.
 """
 
 import hashlib
