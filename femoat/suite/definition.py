@@ -52,6 +52,10 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     solver_failure = "separate"   # how the report counts solver failures: "separate" |
                                   # "collapse" | "exclude" (stored in suite.json)
 
+No key takes a random seed: nothing is random, a run gives the same bits wherever it runs. A
+hunt-and-fill trace counts a solver failure (or an error) as "did not survive" when it chooses
+its next intensity; the row keeps its own status.
+
 The suite hash covers everything that changes a result (model, records and their samples,
 variations, scaling, durations, femoat's version and a fingerprint of the sources that compute
 a run: :func:`code_version`), not the ``[run]`` keys except ``stop_on_collapse``. So a suite
