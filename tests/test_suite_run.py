@@ -196,3 +196,8 @@ def test_hunt_and_fill_suite_resumes_its_traces(tmp_path):
     assert df.groupby("record").size().max() <= 4 and (df["im"] == 1.0).sum() == 3
     again = run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
     assert again["todo"] == 0
+    # the report half reads this folder: femoat suite report DIR
+    from femoat.cli import main
+
+    assert main(["suite", "report", str(tmp_path / "out")]) == 0
+    assert (tmp_path / "out" / "report" / "collapse_summary.csv").is_file()
