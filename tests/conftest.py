@@ -10,10 +10,8 @@ os.environ["FEMOAT_AOT"] = "0"
 
 from pathlib import Path  # noqa: E402
 
-# shared/ lies beside the repository (CI clones main with shared/ next to it).
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-if not SHARED.is_dir():
-    SHARED = Path("/work/shared")
+# Test records shipped with the repository (provenance, licence and sha256 in data/README.md).
+DATA = Path(__file__).resolve().parent / "data"
 
 
 # ---- off-screen rendering in a subprocess (a missing OpenGL backend can crash VTK outright) --
