@@ -46,12 +46,12 @@ def run(args):
     from femoat.run import run as run_model
     from femoat.scenario import load_scenario
 
+    from femoat.opensees.available import import_opensees
+
     try:
-        import openseespy.opensees  # noqa: F401
-    except Exception as exc:  # RuntimeError, not ImportError, when libblas3/liblapack3 are missing
-        print(f"femoat opensees: error: openseespy cannot be imported ({exc}); install it with "
-              "pip install femoat[verify] (Debian/Ubuntu also need: apt-get install libblas3 "
-              "liblapack3).", file=sys.stderr)
+        import_opensees()
+    except ImportError as exc:  # whatever openseespy's import raised, with what to install
+        print(f"femoat opensees: error: {exc}", file=sys.stderr)
         return 2
     sc = load_scenario(args.scenario)
     duration = sc.motion.duration + sc.extra_time
