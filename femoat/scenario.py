@@ -58,6 +58,7 @@ Every table and key is optional; omitted values take the defaults of the paper s
     figures = true
 """
 
+import contextlib
 import dataclasses
 import math
 import tomllib
@@ -158,6 +159,22 @@ def _numbers(d, key, default, where, unit):
     return tuple(float(v) for v in value)
 
 
+@contextlib.contextmanager
+def _in(where):
+    """Prefix the table to a ValueError raised by the objects a table builds (their messages name
+    the parameter, e.g. "gap = -1.0 must be ..."; a file reader's error names its file)."""
+    from femoat.ground_motions import RecordFormatError
+
+    try:
+        yield
+    except RecordFormatError:
+        raise
+    except ValueError as exc:
+        if str(exc).startswith("["):  # already names its table
+            raise
+        raise ValueError(f"{where} {exc}") from None
+
+
 def _numeric_table(table, cls, where):
     """``cls(**table)`` for a table of numbers whose keys are ``cls``'s fields."""
     allowed = {f.name for f in dataclasses.fields(cls)}
@@ -166,7 +183,8 @@ def _numeric_table(table, cls, where):
         if not isinstance(value, (int, float)) or isinstance(value, bool) or math.isnan(value):
             raise ValueError(f"{where} {key} = {value!r}: expected a number.")
     try:
-        return cls(**table)
+        with _in(where):
+            return cls(**table)
     except TypeError as exc:  # a required parameter missing
         raise ValueError(f"{where}: {exc}; allowed keys: {sorted(allowed)}.") from None
 
@@ -182,8 +200,9 @@ def building_from_dict(d):
     story = _table(d, "story", where)
     if model == "elastic":
         _check_keys(story, {"k", "k0"}, "[building.story]")
-        mat = Elastic(k=_number(story, "k", story.get("k0", 42.799), "[building.story]",
-                                "kip/in"))
+        k = _number(story, "k", story.get("k0", 42.799), "[building.story]", "kip/in")
+        with _in("[building.story]"):
+            mat = Elastic(k=k)
     elif model == "bilinear":
         mat = _numeric_table(story, Bilinear, "[building.story]")
     elif model == "imk":
@@ -194,6 +213,11 @@ def building_from_dict(d):
         raise ValueError(f"[building] story_model = {model!r}: use 'elastic', 'bilinear' or 'imk'.")
     iso = _table(d, "isolator", where)
     iso.setdefault("W", base + sum(floors))
+    with _in(where):
+        return _building(d, base, floors, iso, mat, where)
+
+
+def _building(d, base, floors, iso, mat, where):
     return Building(
         base_weight=base, floor_weights=floors,
         isolator=_numeric_table(iso, FrictionPendulum, "[building.isolator]"),
@@ -212,9 +236,12 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
     d = dict(d)
     where = "[walls]"
     _check_keys(d, _KNOWN["walls"], where)
-    preset = wall_preset(_text(d, "preset", "concrete", where),
-                         damping=_text(d, "damping", "published", where))
-    law = make_law(_text(d, "law", "H", where), preset.contact)
+    name, damping = _text(d, "preset", "concrete", where), _text(d, "damping", "published", where)
+    kind = _text(d, "law", "H", where)
+    with _in(f"{where} preset = {name!r}, damping = {damping!r}:"):
+        preset = wall_preset(name, damping=damping)
+    with _in(f"{where} law = {kind!r}:"):
+        law = make_law(kind, preset.contact)
     if _flag(d, "calibrate", False, where) and law.kind != "E":
         from femoat.impact.calibration import calibrate as calibrate_law  # scipy.integrate: 1 s
 
@@ -228,7 +255,8 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
     if "fe" in d:
         wall = fe_wall_from_dict(_table(d, "fe", where), law, wall.damping_ratio, base_dir,
                                  base_mass)
-    return tuple(MoatWall(law, wall, gap, s) for s in sides)
+    with _in(where):
+        return tuple(MoatWall(law, wall, gap, s) for s in sides)
 
 
 def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None):
@@ -279,11 +307,16 @@ def _resolve(path, base_dir):
 
 def motion_from_dict(d, base_dir=Path(".")):
     """The ground motion from the ``[motion]`` table (scaled and time-scaled)."""
-    from femoat import ground_motions as gmod
-
     d = dict(d)
     where = "[motion]"
     _check_keys(d, _KNOWN["motion"], where)
+    with _in(where):
+        return _motion(d, base_dir, where)
+
+
+def _motion(d, base_dir, where):
+    from femoat import ground_motions as gmod
+
     source = _text(d, "source", "erzincan", where)
     if source == "erzincan":
         gm = gmod.erzincan_ns()
@@ -315,7 +348,10 @@ def motion_from_dict(d, base_dir=Path(".")):
 def _path(d, base_dir):
     if "path" not in d:
         raise ValueError("[motion] needs path = '...' for this source.")
-    return _resolve(_text(d, "path", "record.AT2", "[motion]"), base_dir)
+    path = _resolve(_text(d, "path", "record.AT2", "[motion]"), base_dir)
+    if not path.is_file():
+        raise FileNotFoundError(f"[motion] path = {d['path']!r}: no such file ({path}).")
+    return path
 
 
 def scenario_from_dict(d, base_dir=Path(".")):
