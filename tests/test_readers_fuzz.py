@@ -10,7 +10,6 @@ never a NaN in a record. Runs are bounded (at most 150 examples each) so the fil
 
 import math
 import re
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -22,10 +21,16 @@ from femoat.ground_motions import GroundMotion, RecordFormatError, read_at2, rea
 from femoat.ground_motions.peer import MAX_ABS_VALUE
 from femoat.scenario import Scenario, load_scenario, scenario_from_dict
 
-FUZZ = settings(max_examples=150, deadline=None, derandomize=True,
+FUZZ = settings(max_examples=150, deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
-_TMP = Path(tempfile.mkdtemp(prefix="femoat-fuzz-"))
+_TMP = None  # the module's temporary folder (set by _fuzz_dir)
 _counter = iter(range(10**9))
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _fuzz_dir(tmp_path_factory):
+    global _TMP
+    _TMP = tmp_path_factory.mktemp("fuzz")
 
 
 def _file(data, suffix):
