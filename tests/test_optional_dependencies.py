@@ -72,3 +72,17 @@ def test_opensees_command_explains_what_to_install(broken_opensees_env, tmp_path
     assert "Traceback" not in done.stderr
     assert "apt-get install libblas3 liblapack3" in done.stderr
     assert "pip install femoat[verify]" in done.stderr
+
+
+def test_compile_without_a_c_compiler_explains_what_to_install(tmp_path):
+    # CC pointing nowhere stands in for a machine without cc/gcc: numba.pycc's own error only
+    # suggests conda; femoat says what to install and that the JIT keeps working
+    env = {**os.environ, "FEMOAT_AOT": "1", "FEMOAT_CACHE": str(tmp_path / "cache"),
+           "CC": str(tmp_path / "no-cc"),
+           "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    done = _run(["-c", "from femoat.cli import main; raise SystemExit(main(['compile']))"], env,
+                cwd=tmp_path)
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr
+    assert "apt-get install gcc" in done.stderr and "keeps using numba's JIT" in done.stderr
+    assert not list((tmp_path / "cache").rglob("*.so"))  # nothing half-built left behind
