@@ -56,7 +56,8 @@ def test_fema_errors_list_the_valid_choices():
 
 def test_erzincan_rebuild_matches_erzikan_txt():
     ns = erzincan_ns()
-    # data/README.md: erzikan.txt column 1 in cm/s², rows 1-4156 are the PEER record, ÷ 981 gives g
+    # data/README.md: erzikan.txt column 1 in cm/s², rows 1-4156 are the PEER record, ÷ 981
+    # gives g
     ref = np.loadtxt(DATA / "erzikan.txt", comments="%")[:4156, 0] / 981.0
     assert (ns.npts, ns.dt) == (4156, 0.005)
     np.testing.assert_allclose(ns.accel_g, ref, rtol=0, atol=1e-5)

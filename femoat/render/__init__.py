@@ -6,6 +6,7 @@ OSMesa) itself before the first plotter (:mod:`femoat.render.backend`); set
 ``VTK_DEFAULT_OPENGL_WINDOW`` to choose another. Without any backend VTK may crash the process, so
 callers that must survive render in a subprocess.
 
-Modules: backend (the off-screen backend), wall (the wall's deformed shape at the peak impact of a building run with a modal
-wall), animation (a GIF of a building run: base mat, floors, both walls).
+Modules: backend (the off-screen backend), wall (the wall's deformed shape at the peak impact of
+a building run with a modal wall), animation (a GIF of a building run: base mat, floors, both
+walls).
 """
