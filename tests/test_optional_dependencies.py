@@ -86,3 +86,22 @@ def test_compile_without_a_c_compiler_explains_what_to_install(tmp_path):
     assert "Traceback" not in done.stderr
     assert "apt-get install gcc" in done.stderr and "keeps using numba's JIT" in done.stderr
     assert not list((tmp_path / "cache").rglob("*.so"))  # nothing half-built left behind
+
+
+def test_render_tests_skip_with_one_reason_without_an_opengl_backend(tmp_path):
+    # a pyvista whose import fails as it does without libGL stands in for a machine without any
+    # OpenGL backend; the render tests skip (never crash or fail) and say what to install
+    fake = tmp_path / "fake" / "pyvista"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text(
+        'raise ImportError("libGL.so.1: cannot open shared object file: No such file")\n')
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(tmp_path / "fake"), str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    done = _run(["-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider",
+                 "tests/test_wall_fe_render.py", "tests/test_render_backend.py::"
+                 "test_render_command_on_a_headless_machine_prints_no_x_warning"], env)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    skips = [line for line in done.stdout.splitlines() if line.startswith("SKIPPED")]
+    assert skips and " passed" not in done.stdout and " failed" not in done.stdout
+    for line in skips:
+        assert "no off-screen render backend" in line and "apt-get install libegl1" in line
