@@ -326,3 +326,16 @@ def test_scenario_file_that_is_not_text(tmp_path):
     path.write_bytes(b"[walls]\nlaw = \"\xff\xfe\"\n")
     with pytest.raises(ValueError, match=r"s\.toml: not UTF-8 text"):
         load_scenario(path)
+
+
+@pytest.mark.parametrize("text", ['[walls]\ngap = "four"\n', "[building]\nfloor_weights = 3\n",
+                                  "[motion]\nsource = \"at2\"\npath = \"missing.AT2\"\n",
+                                  "\x00\x01garbage"])
+def test_a_bad_scenario_writes_no_output(tmp_path, capsys, text):
+    from femoat.cli import main
+
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 2
+    assert "femoat run: error:" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
