@@ -169,8 +169,8 @@ def _in(where):
         yield
     except RecordFormatError:
         raise
-    except ValueError as exc:
-        if str(exc).startswith("["):  # already names its table
+    except (ValueError, OverflowError) as exc:  # OverflowError: int(inf) in a check
+        if isinstance(exc, ValueError) and str(exc).startswith("["):  # already names its table
             raise
         raise ValueError(f"{where} {exc}") from None
 
@@ -179,9 +179,12 @@ def _numeric_table(table, cls, where):
     """``cls(**table)`` for a table of numbers whose keys are ``cls``'s fields."""
     allowed = {f.name for f in dataclasses.fields(cls)}
     _check_keys(table, allowed, where)
+    whole = {f.name for f in dataclasses.fields(cls) if f.type in (int, "int")}
     for key, value in table.items():  # ranges (and whether inf is allowed) are cls's to check
         if not isinstance(value, (int, float)) or isinstance(value, bool) or math.isnan(value):
             raise ValueError(f"{where} {key} = {value!r}: expected a number.")
+        if key in whole and not isinstance(value, int):
+            raise ValueError(f"{where} {key} = {value!r}: expected a whole number.")
     try:
         with _in(where):
             return cls(**table)

@@ -198,7 +198,8 @@ def test_text_reader_binary_garbage(blob):
 # TOML values of every type, well-typed or not, including NaN/inf and huge numbers
 toml_values = st.one_of(
     st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True),
-    st.sampled_from([0.0, -1.0, 1e308, 1e-300, 4.0, 0.5, 2.0]),
+    st.sampled_from([0.0, -1.0, 1e308, 1e-300, 4.0, 0.5, 2.0, 3, 10**19, math.inf, -math.inf,
+                     math.nan]),
     st.text(max_size=6), st.sampled_from(["four", "H", "E", "steel", "concrete", "published",
                                           "consistent", "pos", "both", "at2", "text", "fema"]),
     st.booleans(), st.lists(st.floats(0.1, 20.0), max_size=4), st.just({}),
@@ -310,6 +311,8 @@ def test_scenario_files_mutated(data):
     ("output", "figures", "no", r"\[output\] figures = 'no': expected true or false"),
     ("motion", "pga", math.nan, r"\[motion\] pga = nan: expected a finite number"),
     ("walls", "law", "Q", r"\[walls\] law = 'Q'"),
+    ("solver", "record_every", math.inf, r"\[solver\] record_every = inf: expected a whole"),
+    ("solver", "max_newton", 3.5, r"\[solver\] max_newton = 3.5: expected a whole number"),
 ])
 def test_mistyped_keys_are_value_errors_naming_the_key(table, key, value, words):
     # before: gap = "four" gave float()'s message without the key; floor_weights = 3 and an
