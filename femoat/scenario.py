@@ -203,7 +203,8 @@ def building_from_dict(d):
     story = _table(d, "story", where)
     if model == "elastic":
         _check_keys(story, {"k", "k0"}, "[building.story]")
-        k = _number(story, "k", story.get("k0", 42.799), "[building.story]", "kip/in")
+        key = "k" if "k" in story or "k0" not in story else "k0"
+        k = _number(story, key, 42.799, "[building.story]", "kip/in")
         with _in("[building.story]"):
             mat = Elastic(k=k)
     elif model == "bilinear":
@@ -216,18 +217,13 @@ def building_from_dict(d):
         raise ValueError(f"[building] story_model = {model!r}: use 'elastic', 'bilinear' or 'imk'.")
     iso = _table(d, "isolator", where)
     iso.setdefault("W", base + sum(floors))
+    isolator = _numeric_table(iso, FrictionPendulum, "[building.isolator]")
+    ratio = _number(d, "story_damping_ratio", 0.02, where)
+    period = _number(d, "story_damping_period", 0.30, where, "s")
     with _in(where):
-        return _building(d, base, floors, iso, mat, where)
-
-
-def _building(d, base, floors, iso, mat, where):
-    return Building(
-        base_weight=base, floor_weights=floors,
-        isolator=_numeric_table(iso, FrictionPendulum, "[building.isolator]"),
-        stories=tuple(mat for _ in floors),
-        story_damping_ratio=_number(d, "story_damping_ratio", 0.02, where),
-        story_damping_period=_number(d, "story_damping_period", 0.30, where, "s"),
-    )
+        return Building(base_weight=base, floor_weights=floors, isolator=isolator,
+                        stories=tuple(mat for _ in floors), story_damping_ratio=ratio,
+                        story_damping_period=period)
 
 
 def walls_from_dict(d, base_dir=Path("."), base_mass=None):
