@@ -40,6 +40,8 @@ EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
 _ROOT = Path(__file__).resolve().parent
 _SOURCES = ("jit.py", "contact/kernels.py", "integration/kernel.py", "structure/materials")
 _loaded = {}
+_NEEDS = ("this needs a C compiler (cc/gcc; Debian/Ubuntu: apt-get install gcc) and setuptools "
+          "(pip install setuptools). femoat keeps using numba's JIT.")
 
 
 def enabled():
@@ -115,7 +117,7 @@ def build(force=False):
     try:
         from numba.pycc import CC
     except ImportError as err:
-        raise RuntimeError(f"cannot compile ahead of time: {err} (pip install setuptools)") from None
+        raise RuntimeError(f"cannot compile ahead of time: {err}; {_NEEDS}") from None
     import warnings
 
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -123,18 +125,17 @@ def build(force=False):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
-            cc = CC(MODULE)
-            cc.output_dir = str(work)
-            cc.output_file = path.name
-            cc.use_nrt = OPTIONS.get("_nrt", True)  # the kernels' own compile options
-            for name, (kernel, sig) in signatures.items():
-                cc.export(name, sig)(kernel.py_func)
-            try:
+            try:  # CC() itself raises when it finds no compiler (with conda-only advice)
+                cc = CC(MODULE)
+                cc.output_dir = str(work)
+                cc.output_file = path.name
+                cc.use_nrt = OPTIONS.get("_nrt", True)  # the kernels' own compile options
+                for name, (kernel, sig) in signatures.items():
+                    cc.export(name, sig)(kernel.py_func)
                 cc.compile()
             except Exception as err:
-                raise RuntimeError(f"cannot compile ahead of time ({type(err).__name__}: {err}); "
-                                   "a C compiler (cc/gcc) and setuptools are needed. femoat "
-                                   "keeps using numba's JIT.") from None
+                raise RuntimeError(f"cannot compile ahead of time ({type(err).__name__}: "
+                                   f"{str(err).strip()}); {_NEEDS}") from None
         os.replace(work / path.name, path)
     finally:
         shutil.rmtree(work, ignore_errors=True)

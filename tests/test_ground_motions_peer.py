@@ -2,26 +2,21 @@
 
 import re
 
-from conftest import SHARED
+from conftest import DATA
 
 import numpy as np
 import pytest
 
 from femoat.ground_motions import RecordFormatError, read_at2, read_text
 
-DATA = SHARED / "ground_motions"
 AT2_FILES = sorted((DATA / "peer").glob("*.AT2"))
 
-# PGA [g] and its time [s], from the table in /work/shared/ground_motions/peer/README.md
+# PGA [g] and its time [s], from the table in tests/data/README.md
 README_PGA = {
-    "RSN181_IMPVALL.H_H-E06230": (0.4490, 5.95),
-    "RSN171_IMPVALL.H_H-EMO270": (0.2976, 5.15),
-    "RSN1084_NORTHR_SCS052": (0.6230, 4.71),
     "Rinaldi228": (0.8741, 2.56),
-    "RSN879_LANDERS_LCN260": (0.7252, 10.47),
+    "RSN1084_NORTHR_SCS052": (0.6230, 4.71),
     "RSN77_SFERN_PUL164": (1.2190, 7.75),
-    "RSN753_LOMAP_CLS000-hor1": (0.6447, 2.63),
-    "RSN1476_CHICHI_TCU029-N": (0.1984, 47.37),
+    "RSN181_IMPVALL.H_H-E06230": (0.4490, 5.95),
 }
 
 HEADER = (
@@ -31,8 +26,9 @@ HEADER = (
 )
 
 
-def test_all_shared_at2_files_are_found():
-    assert len(AT2_FILES) == 8
+def test_every_shipped_at2_file_is_listed():
+    # tests/data/README.md lists 4 AT2 files with their PGA; each must be in data/peer/ and read
+    assert sorted(p.stem for p in AT2_FILES) == sorted(README_PGA)
 
 
 @pytest.mark.parametrize("path", AT2_FILES, ids=lambda p: p.stem)
@@ -116,24 +112,24 @@ def test_zero_dt_in_header(tmp_path):
 def test_read_text_erzikan_cm_s2():
     path = DATA / "erzikan.txt"
     gm = read_text(path, 0.005, units="cm/s2", comment="%")
-    # README: 2 '%' header lines then 4260 rows; column 1 (index 0) is N-S in cm/s²
+    # data/README.md: 2 '%' header lines then 4260 rows; column 1 (index 0) is N-S in cm/s²
     assert gm.npts == 4260
     assert gm.dt == 0.005
     # cm/s² -> g with femoat's G: 1 g = 386.09 in/s² * 2.54 cm/in = 980.66860 cm/s²
     raw = np.loadtxt(path, comments="%")[:, 0]
     np.testing.assert_allclose(gm.accel_g, raw / (386.09 * 2.54), rtol=1e-14)
-    # README: N-S PGA 505.46643 cm/s² at row 578 (t = 577 * 0.005 = 2.885 s)
+    # data/README.md: N-S PGA 505.46643 cm/s² at row 578 (t = 577 * 0.005 = 2.885 s)
     assert gm.pga == pytest.approx(505.46643 / 980.6686, rel=1e-7)
     assert gm.time[np.argmax(np.abs(gm.accel_g))] == pytest.approx(2.885, abs=1e-12)
 
 
 def test_read_text_max_rows_and_column():
     path = DATA / "erzikan.txt"
-    # the first 4156 rows are the PEER record (README §1); column index 1 is E-W
+    # the first 4156 rows are the PEER record (data/README.md); column index 1 is E-W
     ns = read_text(path, 0.005, units="cm/s2", comment="%", max_rows=4156)
     ew = read_text(path, 0.005, units="cm/s2", comment="%", max_rows=4155, column=1)
     assert ns.npts == 4156 and ew.npts == 4155
-    # README: E-W PGA 486.10 cm/s² at t = 3.46 s
+    # data/README.md: E-W PGA 486.10 cm/s² at t = 3.46 s
     assert ew.pga * 980.6686 == pytest.approx(486.10, abs=0.01)
     assert ew.time[np.argmax(np.abs(ew.accel_g))] == pytest.approx(3.46, abs=1e-12)
 

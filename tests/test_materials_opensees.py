@@ -9,10 +9,11 @@ import math
 
 import numpy as np
 import pytest
+from conftest import opensees_or_skip
 
 from femoat.structure.materials import Bilinear, IMKBilinear, material_commit, material_trial
 
-ops = pytest.importorskip("openseespy.opensees")
+ops = opensees_or_skip()
 
 pytestmark = pytest.mark.opensees
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+from conftest import opensees_missing
 
 from femoat.contact import make_law
 from femoat.ground_motions import GroundMotion
@@ -24,14 +25,9 @@ from femoat.structure.materials import Elastic, FrictionPendulum, IMKBilinear
 from femoat.structure.pounding import MoatWall, PoundingModel
 from femoat.walls import wall_preset
 
-try:  # openseespy raises RuntimeError, not ImportError, when libblas3/liblapack3 are missing
-    import openseespy.opensees  # noqa: F401
-
-    HAVE_OPENSEES = True
-except Exception:  # pragma: no cover - depends on the machine
-    HAVE_OPENSEES = False
-
-needs_opensees = pytest.mark.skipif(not HAVE_OPENSEES, reason="openseespy cannot be imported")
+# the suite's one OpenSees probe (conftest): its reason names the packages and the apt-get command
+needs_opensees = pytest.mark.skipif(opensees_missing() is not None,
+                                    reason=str(opensees_missing()))
 
 
 def _first_seconds(gm, seconds):

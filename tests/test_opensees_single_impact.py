@@ -17,8 +17,9 @@ import math
 from functools import lru_cache
 
 import pytest
+from conftest import opensees_or_skip
 
-pytest.importorskip("openseespy.opensees")
+opensees_or_skip()
 
 from femoat.contact import make_law  # noqa: E402
 from femoat.impact import simulate_impact  # noqa: E402

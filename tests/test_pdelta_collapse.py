@@ -93,10 +93,11 @@ def test_imk_building_with_p_delta_collapses_and_the_time_is_recorded():
     assert r.time[-1] == pytest.approx(c["drift"], abs=0) and ratio[-1] > 0.10
     assert ratio[:-1].max() <= 0.10
     assert r.meta["stats"]["t_reached"] == c["drift"] < motion.duration
-    # without the stop the drift keeps growing past the limit (the story has capped)
+    # without the stop the drift keeps growing past the limit (the story has capped and P-Delta
+    # pulls it over) until the runaway bound, a drift of one story height, ends the run
     r2 = run(model, motion, collapse=CollapseCriteria(drift_ratio=0.10, stop=False))
-    assert r2.collapse["drift"] == c["drift"] and not r2.collapse["stopped"]
-    assert max(r2.peaks["peak_drift_ratio"]) > 0.15
+    assert r2.collapse["drift"] == c["drift"] and r2.collapse["stopped"]
+    assert max(r2.peaks["peak_drift_ratio"]) > 1.0 > np.abs(r2.story_drifts()[:-1]).max() / 39.0
 
 
 def test_collapse_criteria_do_not_change_a_run_that_reaches_none():

@@ -43,7 +43,8 @@ def test_importing_the_solver_does_not_import_numba(tmp_path):
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
     if shutil.which("cc") is None and shutil.which("gcc") is None:
-        pytest.skip("no C compiler: numba.pycc cannot link the ahead-of-time module")
+        pytest.skip("no C compiler: numba.pycc cannot link the ahead-of-time module (Debian/"
+                    "Ubuntu: apt-get install gcc); femoat keeps using numba's JIT")
     cache = tmp_path_factory.mktemp("cache")
     done = _python("from femoat.cli import main; raise SystemExit(main(['compile']))",
                    _env(cache))

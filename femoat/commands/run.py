@@ -27,8 +27,12 @@ def run(args):
 
     sc = load_scenario(args.scenario)
     out = args.out or sc.output_folder
+    from femoat.warmup import warm_up
+
+    startup = warm_up()  # compile / load the kernels outside the run's timed loop
     result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time,
                        collapse=sc.collapse)
+    result.meta["compile_seconds"] = startup
     result.save(out / "run.npz")
     from femoat.paper import write_outputs
 
@@ -38,10 +42,12 @@ def run(args):
                   figures=sc.figures and not args.no_figures)
     if sc.figures and not args.no_figures:
         pf.plot_global_response({(wall, law): result}, out / "global_response.png")
+    # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
+    summary = {**result.peaks, "compile_seconds": startup}
     if args.json:
-        print(json.dumps(result.peaks))
+        print(json.dumps(summary))
     else:
-        for k, v in result.peaks.items():
+        for k, v in summary.items():
             print(f"{k:28s} {v}")
         print(f"wrote {out / 'run.npz'}")
     from femoat.commands.paper import _compile_ahead_of_time

@@ -12,9 +12,10 @@ Projecting both on north (azimuth 0°) gives
 
     NS = FN·cos 32° + FP·cos 122° = FN·cos 32° − FP·sin 32°.
 
-Cross-check (tests/test_ground_motions_erzincan.py): this matches column 1 of ``erzikan.txt``
+Cross-check (tests/test_ground_motions_fema.py): this matches column 1 of ``erzikan.txt``
 (github.com/lihongweiseu/FDZ, cm/s², ÷ 981) to about 6e-7 g over all 4156 samples; PGA is
-0.515256 g at t = 2.885 s. See /work/shared/ground_motions/README.md for the full provenance.
+0.515256 g at t = 2.885 s. The test records and their provenance are in the repository's
+``tests/data/`` (README.md there).
 """
 
 from functools import lru_cache

@@ -36,8 +36,11 @@ class RecordFormatError(ValueError):
 
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
-_NGA_WEST2 = re.compile(rf"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*({_NUMBER})", re.IGNORECASE)
-_OLD_PEER = re.compile(rf"^\s*(\d+)\s*,?\s+({_NUMBER})\s+NPTS\s*,?\s*DT\b", re.IGNORECASE)
+# NPTS has at most 9 digits: a longer run of digits is no count (and int() refuses > 4300 digits)
+_NGA_WEST2 = re.compile(rf"NPTS\s*=\s*(\d{{1,9}})\s*,?\s*DT\s*=\s*({_NUMBER})",
+                        re.IGNORECASE | re.ASCII)
+_OLD_PEER = re.compile(rf"^\s*(\d{{1,9}})\s*,?\s+({_NUMBER})\s+NPTS\s*,?\s*DT\b",
+                       re.IGNORECASE | re.ASCII)
 
 
 def read_at2(path):
@@ -56,12 +59,17 @@ def read_at2(path):
     Raises
     ------
     RecordFormatError
-        Fewer than 4 header lines, no NPTS/DT on line 4, a token that is not a number, or a value
-        count different from NPTS.
+        Fewer than 4 header lines, no NPTS/DT on line 4, a token that is not a finite number (or
+        is larger in magnitude than :data:`MAX_ABS_VALUE`), or a value count different from NPTS.
+        The message names the file and the line (lines counted from 1, as an editor does).
     """
     path = Path(path)
     with open(path, encoding="latin-1", newline=None) as f:
-        lines = f.read().splitlines()
+        # lines as an editor counts them: universal newlines, then "\n" only (str.splitlines
+        # would also break at form feeds and other control characters and shift line numbers)
+        lines = f.read().split("\n")
+    if lines[-1] == "":
+        lines.pop()
     if len(lines) < 4:
         raise RecordFormatError(
             path, len(lines) + 1, f"expected 4 header lines, the file has only {len(lines)} lines"
@@ -108,6 +116,12 @@ def _parse_npts_dt(path, line):
     return npts, dt
 
 
+MAX_ABS_VALUE = 1e6
+"""Largest magnitude a reader accepts in a file, in the file's units (g, cm/s², ...): a million
+is far beyond any acceleration record (the largest recorded are a few g, a few thousand cm/s²), so
+a larger value means a corrupt file or wrong units, and would overflow later arithmetic."""
+
+
 def _to_float(path, lineno, token):
     try:
         value = float(token)
@@ -115,6 +129,10 @@ def _to_float(path, lineno, token):
         raise RecordFormatError(path, lineno, f"expected a number, got {token!r}") from None
     if not np.isfinite(value):
         raise RecordFormatError(path, lineno, f"expected a finite number, got {token!r}")
+    if abs(value) > MAX_ABS_VALUE:
+        raise RecordFormatError(
+            path, lineno, f"expected an acceleration, got {token!r} (magnitude above "
+            f"{MAX_ABS_VALUE:g} in the file's units: a corrupt file or the wrong units)")
     return value
 
 
@@ -154,6 +172,15 @@ def read_text(path, dt, units="g", column=0, skip_rows=None, comment="%#", max_r
     -------
     GroundMotion
         Acceleration in g, named after the file stem.
+
+    Raises
+    ------
+    RecordFormatError
+        A data line without the column, a token that is not a finite number (or is larger in
+        magnitude than :data:`MAX_ABS_VALUE`), or fewer than 2 data rows; the message names the
+        file and the line.
+    ValueError
+        An argument out of range (``units``, ``column``, ``skip_rows``, ``max_rows``, ``dt``).
     """
     path = Path(path)
     key = str(units).strip().lower().replace("^2", "2").replace("²", "2").replace("sec", "s")

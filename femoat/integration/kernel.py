@@ -253,31 +253,37 @@ def _crossing(d0, dd0, d1, dd1, h):
 
 @njit(cache=True)
 def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
-    """Record the first time each limit is exceeded; True when one is exceeded now.
+    """Record the first time each limit is exceeded; 1 when a limit of row 0 is exceeded now,
+    2 when one of row 1 (runaway bounds: the run cannot mean anything beyond them), else 0.
 
-    ``limits`` holds, per element, a bound on |deformation| [in], then per contact a bound on
-    the wall's displacement at the impact point [in], then per contact a bound on the contact
-    force [kip] (math.inf: none); ``first`` the time each was first exceeded (−1: not yet).
+    Each row of ``limits`` holds, per element, a bound on |deformation| [in], then per contact
+    a bound on the wall's displacement at the impact point [in], then per contact a bound on the
+    contact force [kip] (math.inf: none); ``first`` the time each bound of row 0 was first
+    exceeded (−1: not yet).
     """
     nel, ncon = el_d.size, c_f.size
-    hit = False
+    hit = 0
     for e in range(nel):
-        if abs(el_d[e]) > limits[e]:
-            hit = True
+        x = abs(el_d[e])
+        if x > limits[0, e]:
+            hit = max(hit, 1)
             if first[e] < 0.0:
                 first[e] = t
+        if x > limits[1, e]:
+            hit = 2
     for c in range(ncon):
         w = 0.0
         for i in range(n_struct, u.size):
             w -= c_B[c, i] * u[i]
-        if abs(w) > limits[nel + c]:
-            hit = True
-            if first[nel + c] < 0.0:
-                first[nel + c] = t
-        if c_f[c] > limits[nel + ncon + c]:
-            hit = True
-            if first[nel + ncon + c] < 0.0:
-                first[nel + ncon + c] = t
+        for k in range(2):
+            j = nel + c + k * ncon
+            x = abs(w) if k == 0 else c_f[c]
+            if x > limits[0, j]:
+                hit = max(hit, 1)
+                if first[j] < 0.0:
+                    first[j] = t
+            if x > limits[1, j]:
+                hit = 2
     return hit
 
 
@@ -668,8 +674,8 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 out_closed[k, c] = c_closed[c]
             stats[S_NOUT] = k + 1
         if limit_mode != LIMITS_OFF:
-            if _check_limits(t, u, el_d, c_f, c_B, iopt[I_N_STRUCT], limits, first_exceed) \
-                    and limit_mode == LIMITS_STOP:
+            hit = _check_limits(t, u, el_d, c_f, c_B, iopt[I_N_STRUCT], limits, first_exceed)
+            if hit == 2 or (hit == 1 and limit_mode == LIMITS_STOP):
                 state_t[0] = t
                 h_state[0] = h
                 return LIMIT_REACHED

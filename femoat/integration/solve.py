@@ -69,12 +69,14 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     backend : str
         "auto" (the ahead-of-time compiled kernels of :mod:`femoat.aot` when built, else numba's
         JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
-    limits : array or None
+    limits : array (2, m) or None
         Limit states checked after every step: per element a bound on |deformation| [in], then
         per contact a bound on the wall displacement at the impact point [in], then per contact
-        a bound on the contact force [kip] (math.inf: none). None checks nothing.
+        a bound on the contact force [kip] (math.inf: none); row 0 the criteria whose first
+        times are recorded, row 1 runaway bounds that always end the run. None checks nothing.
     stop_at_limit : bool
-        End the run at the first step that exceeds a limit (``RawHistory.stopped_at_limit``).
+        End the run at the first step beyond a bound of row 0 (``RawHistory.stopped_at_limit``
+        is then True, as after a runaway bound).
     """
     kern, backend = kernels(backend)
     packed = _canonical(packed)
@@ -121,14 +123,14 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     nel, ncon = packed.el_code.size, packed.c_code.size
     if limits is None:
         limit_mode = kn.LIMITS_OFF
-        limits = np.full(nel + 2 * ncon, np.inf)
+        limits = np.full((2, nel + 2 * ncon), np.inf)
     else:
         limits = np.array(limits, dtype=float)
-        if limits.shape != (nel + 2 * ncon,) or np.any(np.isnan(limits)) or np.any(limits <= 0):
-            raise ValueError(f"limits must hold {nel + 2 * ncon} positive bounds (elements, wall "
-                             "displacements, contact forces; inf for none).")
+        if limits.shape != (2, nel + 2 * ncon) or np.any(np.isnan(limits)) or np.any(limits <= 0):
+            raise ValueError(f"limits must hold 2 x {nel + 2 * ncon} positive bounds (elements, "
+                             "wall displacements, contact forces; inf for none).")
         limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
-    first_exceed = np.full(limits.size, -1.0)
+    first_exceed = np.full(limits.shape[1], -1.0)
     iopt = np.array([integ.max_newton, integ.record_every, _uncoupled_size(packed, lazy),
                      limit_mode, packed.n_struct], dtype=np.int64)
 

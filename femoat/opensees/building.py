@@ -50,7 +50,8 @@ import time as _time
 import numpy as np
 
 from femoat.contact.laws import ContactLaw
-from femoat.opensees.single_impact import _INSTALL_HINT, opensees_contact_material
+from femoat.opensees.available import import_opensees
+from femoat.opensees.single_impact import opensees_contact_material
 from femoat.structure.building import initial_stiffness
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
 from femoat.structure.pounding import PoundingModel
@@ -68,14 +69,6 @@ class OpenSeesFailure(RuntimeError):
     def __init__(self, message, kind, time, step):
         super().__init__(message)
         self.kind, self.time, self.step = kind, time, step
-
-
-def _import_opensees():
-    try:
-        import openseespy.opensees as ops
-    except Exception as exc:  # RuntimeError, not ImportError, when libblas/liblapack are missing
-        raise ImportError(f"{_INSTALL_HINT} ({exc})") from exc
-    return ops
 
 
 def _story_material(mat):
@@ -244,7 +237,7 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
     OpenSeesFailure
         Newton failed at a step, or the state went NaN/inf.
     """
-    ops = _import_opensees()
+    ops = import_opensees()
     if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
         raise ValueError(f"dt = {dt!r} must be a positive time step [s].")
     if duration is None:

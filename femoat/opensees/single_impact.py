@@ -38,22 +38,10 @@ import math
 import numpy as np
 
 from femoat.contact.laws import ContactLaw
+from femoat.opensees.available import import_opensees
 from femoat.walls.sdof import SdofWall
 
-_INSTALL_HINT = (
-    "openseespy is needed for the OpenSees cross-check: pip install femoat[verify] "
-    "(on Debian/Ubuntu openseespy also needs the system packages libblas3 and liblapack3: "
-    "apt-get install libblas3 liblapack3)."
-)
 _FY_NEVER = 1e12  # [kip] a yield force ElasticPPGap never reaches: a purely elastic gap
-
-
-def _import_opensees():
-    try:
-        import openseespy.opensees as ops
-    except ImportError as exc:  # also raised when libblas/liblapack are missing
-        raise ImportError(f"{_INSTALL_HINT} ({exc})") from exc
-    return ops
 
 
 def opensees_contact_material(law, gap):
@@ -119,7 +107,7 @@ def opensees_impact(law, v0, wall=None, dt=1e-6, mass=None, gap=None, t_max=None
         ``time`` [s] (from closure), ``indentation`` [in], ``force`` [kip],
         ``velocity`` (of the mass) [in/s], ``wall_displacement`` [in].
     """
-    ops = _import_opensees()
+    ops = import_opensees()
     if not isinstance(law, ContactLaw):
         raise ValueError("law must be a ContactLaw (see femoat.contact.make_law).")
     if not (isinstance(v0, (int, float)) and math.isfinite(v0) and v0 > 0):

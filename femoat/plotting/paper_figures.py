@@ -152,19 +152,16 @@ def plot_global_response(runs, path):
             r = runs[(wall, law)]
             st = LAW_STYLE[law]
             a0.plot(r.time, r.base_displacement, lw=0.9, **st)
-            drift = r.peaks["peak_drift"]
             acc = [r.peaks["peak_base_acceleration"]] + r.peaks["peak_floor_acceleration"]
-            a1.plot(drift, np.arange(1, len(drift) + 1), marker="o", **st)
             a2.plot(acc, np.arange(len(acc)), marker="o", **st)
+        a2.set_yticks(np.arange(len(acc)))  # levels are whole numbers
+        drift_panel(a1, {law: runs[(wall, law)].peaks for law in laws})
         for g in r.meta["gaps"]:
             a0.axhline(g, color="0.5", lw=0.8)
             a0.axhline(-g, color="0.5", lw=0.8)
         a0.set_title(f"{wall} wall: base displacement (gap lines grey)")
         a0.set_xlabel("time [s]")
         a0.set_ylabel("base displacement [in]")
-        a1.set_title("peak interstory drift")
-        a1.set_xlabel("drift [in]")
-        a1.set_ylabel("story")
         a2.set_title("peak absolute acceleration")
         a2.set_xlabel("acceleration [g]")
         a2.set_ylabel("level (0 = base mat)")
@@ -173,3 +170,39 @@ def plot_global_response(runs, path):
             ax.grid(alpha=0.3)
         a0.legend(fontsize=7, loc="lower right")
     _save(fig, path, plt)
+
+
+def drift_panel(ax, peaks_by_law):
+    """Peak interstory drift per story on ``ax``: drift [in] on the x axis, stories as whole
+    numbers on the y axis, and the drift ratio [%] on a second x axis (top) when the peaks carry
+    ``peak_drift_ratio`` (story heights known): a scale on the same curves when every story has
+    the same height, else the ratios drawn as their own dashed curves with open markers.
+    Returns the ratio axis (None without ratios)."""
+    n = 0
+    for law, peaks in peaks_by_law.items():
+        drift = peaks["peak_drift"]
+        n = max(n, len(drift))
+        ax.plot(drift, np.arange(1, len(drift) + 1), marker="o", **LAW_STYLE[law])
+    ax.set_yticks(np.arange(1, n + 1))
+    ax.set_title("peak interstory drift")
+    ax.set_xlabel("drift [in]")
+    ax.set_ylabel("story")
+    ratios = {law: p.get("peak_drift_ratio") for law, p in peaks_by_law.items()}
+    if not ratios or any(r is None for r in ratios.values()):
+        return None
+    heights = [d / r for law, p in peaks_by_law.items()
+               for d, r in zip(p["peak_drift"], ratios[law]) if r > 0]  # story heights [in]
+    if heights and np.ptp(heights) <= 1e-9 * max(heights):
+        h = heights[0]  # one height: ratio = drift / h is a second scale on the same curves
+        top = ax.secondary_xaxis("top", functions=(lambda d: 100.0 * d / h,
+                                                   lambda pct: pct * h / 100.0))
+        top.set_xlabel("drift ratio [%]")
+        return top
+    top = ax.twiny()  # stories of different heights: the ratios are curves of their own
+    for law, ratio in ratios.items():
+        top.plot(100.0 * np.asarray(ratio), np.arange(1, len(ratio) + 1), ls="--",
+                 marker="o", mfc="none", **{k: v for k, v in LAW_STYLE[law].items()
+                                             if k not in ("ls", "linestyle", "marker")})
+    top.set_xlabel("drift ratio [%] (dashed, open markers)")
+    ax.set_yticks(np.arange(1, n + 1))
+    return top

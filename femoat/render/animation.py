@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from femoat.atomic import atomic_path
+from femoat.render.backend import import_pyvista
 from femoat.units import G
 
 
@@ -92,7 +93,7 @@ def frame_states(result, fps=20, speed=1.0, start=0.0, end=None, max_frames=400)
 
 
 def _box(x0, x1, y0, y1, z0, z1):
-    import pyvista as pv
+    pv = import_pyvista()
 
     return pv.Box(bounds=(x0, x1, y0, y1, z0, z1))
 
@@ -100,7 +101,7 @@ def _box(x0, x1, y0, y1, z0, z1):
 def _cantilever(x_face, thickness, y0, y1, z0, height, nz=24):
     """Structured grid of a wall, its face at x_face, growing in +x by ``thickness`` (negative:
     toward −x); returns the grid and ψ at its points."""
-    import pyvista as pv
+    pv = import_pyvista()
 
     x = np.array(sorted([x_face, x_face + thickness]))
     z = np.linspace(z0, z0 + height, nz + 1)
@@ -119,7 +120,7 @@ def animate_run(result, path, fps=20, speed=1.0, start=0.0, end=None, layout=Non
     scale : float  magnification of the horizontal displacements in the picture [-]
     Returns (path, number of frames).
     """
-    import pyvista as pv
+    pv = import_pyvista()
     from PIL import Image
 
     if str(path).lower().endswith(".gif") is False:

@@ -9,6 +9,7 @@ the finite-element shapes of the modal wall (unit impact displacement), in the w
 import numpy as np
 
 from femoat.atomic import atomic_path
+from femoat.render.backend import import_pyvista
 
 
 def peak_state(result, side=None, at="force"):
@@ -85,7 +86,7 @@ def render_wall_peak(model, modal_wall, result, path, side=None, at="force", dra
         height [-]; the magnification is printed on the picture
     Returns (path, state) with state from :func:`peak_state` plus the magnification.
     """
-    import pyvista as pv
+    pv = import_pyvista()
 
     from femoat.walls.fe.render import _camera, _grid
 

@@ -8,6 +8,7 @@ backend VTK may crash the process, so callers that must survive run this in a su
 import numpy as np
 
 from femoat.atomic import atomic_path
+from femoat.render.backend import import_pyvista
 
 REGION_COLORS = {"base": "royalblue", "impact": "red", "back": "orange"}
 """Colour of each named boundary; other names are drawn in grey."""
@@ -15,7 +16,7 @@ REGION_COLORS = {"base": "royalblue", "impact": "red", "back": "orange"}
 
 def _grid(mesh, point_vectors=None):
     """pyvista UnstructuredGrid of a scikit-fem mesh in the 3D wall frame."""
-    import pyvista as pv
+    pv = import_pyvista()
     from skfem.io.meshio import to_meshio
 
     from femoat.walls.fe.mesh_io import _embed
@@ -34,7 +35,7 @@ def _facet_polydata(mesh, facets):
     Lines and polygons are lifted off the grid's surface by 0.3 % of the mesh size, away from
     their cell, so that they are not hidden by the coplanar grid faces (z-fighting).
     """
-    import pyvista as pv
+    pv = import_pyvista()
 
     from femoat.walls.fe.mesh_io import _embed
 
@@ -79,7 +80,7 @@ def render_regions(mesh, path, window_size=(800, 800)):
 
     A 3D wall is drawn twice: from the moat side (impact face and base) and from the backfill.
     """
-    import pyvista as pv
+    pv = import_pyvista()
     sides = ("moat", "backfill") if mesh.dim() == 3 else ("moat",)
     plotter = pv.Plotter(off_screen=True, shape=(1, len(sides)),
                          window_size=(window_size[0] * len(sides), window_size[1]))
@@ -117,7 +118,7 @@ def render_modes(model, result, path, n_modes=4, amplitude=0.1, window_size=(400
 
     amplitude : float  peak displacement drawn, as a fraction of the wall height [-]
     """
-    import pyvista as pv
+    pv = import_pyvista()
 
     n = min(n_modes, result.shapes.shape[1])
     plotter = pv.Plotter(off_screen=True, shape=(1, n),

@@ -1,0 +1,43 @@
+"""Pay the solver's start-up cost before anything is timed, and say how much it was.
+
+The first building run of a process loads the solver's compiled kernels: from the
+ahead-of-time module (:mod:`femoat.aot`, milliseconds), from numba's on-disk cache (about a
+second: numba's own import), or by compiling them with numba (ten seconds or more). Timed
+inside that first run, this start-up would be reported as solver time, a thousand times the
+solver's real cost. :func:`warm_up` pays it with one tiny run and returns it, so that the
+commands report compile / start-up time apart from solver time.
+"""
+
+import time
+
+_done = {}
+
+
+def warm_up(backend="auto"):
+    """Load or compile the building solver's kernels with a tiny run; return the CPU time it
+    took [s] (process time, like the solver's ``cpu_seconds``).
+
+    Only the first call of a process does anything; later calls return 0.0. The returned time
+    is the start-up the first run of this process would otherwise have paid: numba's import
+    and compilation (or its cache load), or loading the ahead-of-time module.
+    """
+    if backend in _done:
+        return 0.0
+    import numpy as np
+
+    from femoat.ground_motions import GroundMotion
+    from femoat.integration.solve import kernels
+    from femoat.paper import paper_model
+    from femoat.run import run
+
+    t0 = time.process_time()
+    t = np.arange(0.0, 0.2, 0.01)  # [s] a 1 g sine: the walls are 4 in away, no contact needed
+    probe = GroundMotion(np.sin(2.0 * np.pi * t), 0.01, name="start-up probe")
+    run(paper_model("concrete", "H"), probe, extra_time=0.0, backend=backend)
+    kern, used = kernels(backend)
+    if used == "jit":  # called only when a run ends in contact: compile it now, not in a run
+        from femoat.contact.kernels import N_HISTORY, N_PARAMS
+
+        kern.contact_stored_energy(0, np.zeros(N_PARAMS), np.zeros(N_HISTORY), 0.0)
+    _done[backend] = used
+    return time.process_time() - t0

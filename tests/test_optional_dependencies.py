@@ -1,0 +1,107 @@
+"""Optional pieces that are missing make tests skip with one reason saying what to install, and
+make commands fail with that sentence: never a collection error or a traceback.
+
+Without libblas3/liblapack3, ``import openseespy`` raises ``RuntimeError("Failed to import
+openseespy on Linux.")``, which ``pytest.importorskip`` does not catch. A fake ``openseespy`` first
+on the path, whose import raises exactly that, stands in for such a machine.
+"""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+OPENSEES_TESTS = ["tests/test_materials_opensees.py", "tests/test_opensees_single_impact.py",
+                  "tests/test_opensees_building.py"]
+
+
+@pytest.fixture
+def broken_opensees_env(tmp_path):
+    fake = tmp_path / "fake" / "openseespy"
+    (fake / "opensees").mkdir(parents=True)
+    (fake / "__init__.py").write_text(
+        'raise RuntimeError("Failed to import openseespy on Linux.")\n')
+    (fake / "opensees" / "__init__.py").write_text("")
+    path = [str(tmp_path / "fake"), str(ROOT), os.environ.get("PYTHONPATH", "")]
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(path)}
+
+
+def _run(args, env, cwd=ROOT):
+    return subprocess.run([sys.executable, *args], cwd=cwd, env=env, capture_output=True,
+                          text=True, timeout=600, check=False)
+
+
+def test_the_fake_openseespy_fails_like_a_machine_without_blas(broken_opensees_env):
+    done = _run(["-c", "import openseespy.opensees"], broken_opensees_env)
+    assert done.returncode != 0
+    assert "RuntimeError: Failed to import openseespy on Linux." in done.stderr
+
+
+def test_whole_test_folder_collects_without_errors(broken_opensees_env):
+    # exit code 0 and no "error" line; before the fix: 2 collection errors, exit code 2
+    done = _run(["-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider", "tests"],
+                broken_opensees_env)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    assert "ERROR collecting" not in done.stdout
+    assert "error" not in done.stdout.strip().splitlines()[-1]  # "N tests collected in ..."
+
+
+@pytest.mark.parametrize("test_file", OPENSEES_TESTS, ids=lambda f: Path(f).stem)
+def test_opensees_tests_skip_with_one_reason(broken_opensees_env, test_file):
+    done = _run(["-m", "pytest", "-q", "-rs", "-m", "opensees", "-p", "no:cacheprovider",
+                 test_file], broken_opensees_env)
+    # pytest exits 5 ("no tests ran") when the module skips as a whole at collection
+    assert done.returncode in (0, 5), done.stdout[-3000:] + done.stderr[-3000:]
+    last = done.stdout.strip().splitlines()[-1]
+    assert " skipped" in last and not any(w in last for w in ("passed", "failed", "error")), last
+    skips = [line for line in done.stdout.splitlines() if line.startswith("SKIPPED")]
+    assert skips, done.stdout
+    for line in skips:  # one reason: the packages, the command, and what the import raised
+        assert "libblas3 and liblapack3" in line and "apt-get install libblas3 liblapack3" in line
+        assert "RuntimeError: Failed to import openseespy on Linux." in line
+
+
+def test_opensees_command_explains_what_to_install(broken_opensees_env, tmp_path):
+    scenario = ROOT / "studies" / "scenarios" / "paper_concrete_H.toml"
+    done = _run(["-c", "from femoat.cli import main; raise SystemExit(main(['opensees', "
+                 f"{str(scenario)!r}]))"], broken_opensees_env, cwd=tmp_path)
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr
+    assert "apt-get install libblas3 liblapack3" in done.stderr
+    assert "pip install femoat[verify]" in done.stderr
+
+
+def test_compile_without_a_c_compiler_explains_what_to_install(tmp_path):
+    # CC pointing nowhere stands in for a machine without cc/gcc: numba.pycc's own error only
+    # suggests conda; femoat says what to install and that the JIT keeps working
+    env = {**os.environ, "FEMOAT_AOT": "1", "FEMOAT_CACHE": str(tmp_path / "cache"),
+           "CC": str(tmp_path / "no-cc"),
+           "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    done = _run(["-c", "from femoat.cli import main; raise SystemExit(main(['compile']))"], env,
+                cwd=tmp_path)
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr
+    assert "apt-get install gcc" in done.stderr and "keeps using numba's JIT" in done.stderr
+    assert not list((tmp_path / "cache").rglob("*.so"))  # nothing half-built left behind
+
+
+def test_render_tests_skip_with_one_reason_without_an_opengl_backend(tmp_path):
+    # a pyvista whose import fails as it does without libGL stands in for a machine without any
+    # OpenGL backend; the render tests skip (never crash or fail) and say what to install
+    fake = tmp_path / "fake" / "pyvista"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text(
+        'raise ImportError("libGL.so.1: cannot open shared object file: No such file")\n')
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(tmp_path / "fake"), str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    done = _run(["-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider",
+                 "tests/test_wall_fe_render.py", "tests/test_render_backend.py::"
+                 "test_render_command_on_a_headless_machine_prints_no_x_warning"], env)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    skips = [line for line in done.stdout.splitlines() if line.startswith("SKIPPED")]
+    assert skips and " passed" not in done.stdout and " failed" not in done.stdout
+    for line in skips:
+        assert "no off-screen render backend" in line and "apt-get install libegl1" in line
