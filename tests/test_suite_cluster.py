@@ -21,9 +21,9 @@ PEER = Path(__file__).parent / "data" / "peer"
 pytestmark = pytest.mark.skipif(shutil.which("dask") is None,
                                 reason="the dask command line (dask[distributed]) is missing")
 
-SUITE = f"""
+SUITE = """
 [records]
-folder = "{PEER.as_posix()}"
+files = {files}
 duration = 3.0
 extra_time = 0.5
 [variations]
@@ -66,7 +66,10 @@ def cluster(tmp_path):
 
 def test_suite_on_a_two_worker_cluster_equals_the_serial_run(cluster, tmp_path):
     path = tmp_path / "suite.toml"
-    path.write_text(SUITE, encoding="utf-8")
+    # three of the shipped records: 3 x 2 laws x 2 PGAs = 12 runs
+    files = [(PEER / n).as_posix() for n in ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2",
+                                              "RSN181_IMPVALL.H_H-E06230.AT2")]
+    path.write_text(SUITE.format(files=json.dumps(files)), encoding="utf-8")
     suite = load_suite(path)
     address, scheduler_file = cluster
     summary = run_suite(suite, tmp_path / "dask", scheduler=address, stream=io.StringIO())

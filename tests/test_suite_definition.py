@@ -10,6 +10,15 @@ from femoat.cli import main
 from femoat.suite import load_suite
 
 PEER = Path(__file__).parent / "data" / "peer"
+THREE = ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2", "RSN181_IMPVALL.H_H-E06230.AT2")
+
+
+def _three_records(folder):
+    """A folder holding three of the shipped PEER records (the suites' tests use these)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in THREE:
+        shutil.copyfile(PEER / name, folder / name)
+    return folder
 
 GOOD = """
 [records]
@@ -22,13 +31,14 @@ levels = [0.2, 0.4]
 """
 
 
-def _write(tmp_path, text, folder=PEER):
+def _write(tmp_path, text, folder=None):
+    folder = folder or _three_records(tmp_path / "peer")
     path = tmp_path / "suite.toml"
     path.write_text(text.format(folder=folder.as_posix()), encoding="utf-8")
     return path
 
 
-def _fails(tmp_path, capsys, text, *names, folder=PEER):
+def _fails(tmp_path, capsys, text, *names, folder=None):
     """The CLI refuses the file with exit code 2, naming each of ``names``, and runs nothing."""
     path = _write(tmp_path, text, folder)
     out = tmp_path / "out"
@@ -49,7 +59,7 @@ def test_a_good_file_validates(tmp_path):
 def test_glob_and_files_select_the_same_records(tmp_path):
     by_glob = load_suite(_write(tmp_path, GOOD.replace('folder = "{folder}"',
                                                        'glob = "{folder}/R*.AT2"')))
-    files = ", ".join(f'"{p.as_posix()}"' for p in sorted(PEER.glob("R*.AT2")))
+    files = ", ".join(f'"{p.as_posix()}"' for p in sorted((tmp_path / "peer").glob("R*.AT2")))
     by_files = load_suite(_write(tmp_path, GOOD.replace('folder = "{folder}"',
                                                         f"files = [{files}]")))
     assert [r.label for r in by_glob.records] == [r.label for r in by_files.records]
@@ -72,8 +82,7 @@ def test_empty_record_folder_is_named(tmp_path, capsys):
 
 
 def test_malformed_at2_among_good_ones_is_named(tmp_path, capsys):
-    folder = tmp_path / "records"
-    shutil.copytree(PEER, folder)
+    folder = _three_records(tmp_path / "records")
     good = (PEER / "Rinaldi228.AT2").read_text(encoding="latin-1").splitlines()
     # a truncated copy: the header promises NPTS values, the body stops after 10 lines
     (folder / "Broken.AT2").write_text("\n".join(good[:14]) + "\n", encoding="latin-1")
