@@ -10,7 +10,8 @@ on Sa(3.5 s prototype)) is run
 3. on a LocalCluster with 1 and with 2 single-threaded worker processes.
 
 Printed: runs/s (steady: from the first submission to the last result; and overall, with the
-cluster start-up), parallel efficiency of 2 workers against 1, Dask's overhead against the plain
+cluster start-up), parallel efficiency of 2 workers against 1, the rate the workers' CPU per
+run would allow with a free core each (the machine's other users aside), Dask's overhead against the plain
 loop, the CPU of a run split into solver (the compiled loop) and everything else (in the
 worker), and the client's CPU per run (with a LocalCluster the scheduler runs in the client).
 Each setting is run ``--repeat`` times and the fastest is shown. The
@@ -88,7 +89,7 @@ def main():
     print(f"plain loop, 1 process      : {n / wall:7.1f} runs/s   CPU/run {1e3 * cpu / n:6.1f} ms "
           f"(solver {1e3 * solver / n:5.1f} ms, rest {1e3 * (cpu - solver) / n:5.1f} ms)")
 
-    rows = {}
+    rows, cpu_run = {}, {}
     for name, kw in (("suite, serial", dict(serial=True)), ("dask, 1 worker", dict(workers=1)),
                      ("dask, 2 workers", dict(workers=2))):
         out = work / name.replace(", ", "-").replace(" ", "")
@@ -103,6 +104,7 @@ def main():
                 best = (summary, total, client_cpu, load_table(out))
         summary, total, client_cpu, df = best
         rows[name] = summary["runs_per_second"]
+        cpu_run[name] = df["cpu_seconds"].mean()
         print(f"{name:27s}: {summary['runs_per_second']:7.1f} runs/s steady, "
               f"{summary['runs'] / total:6.1f} overall (start-up {total - summary['elapsed']:4.1f} s)"
               f"   CPU/run {1e3 * df['cpu_seconds'].mean():6.1f} ms (solver "
@@ -112,6 +114,10 @@ def main():
     one, two = rows["dask, 1 worker"], rows["dask, 2 workers"]
     print(f"2 workers against 1        : speed-up {two / one:4.2f}, efficiency "
           f"{100 * two / (2 * one):5.1f} %")
+    for k in (1, 2):
+        name = f"dask, {k} worker{'s' if k > 1 else ''}"
+        print(f"{name + ', own cores':27s}: {k / cpu_run[name]:7.1f} runs/s if each worker had a "
+              f"core to itself ({k} / CPU per run)")
     print(f"Dask overhead, 1 worker    : {100 * ((n / wall) / one - 1):+6.1f} % time against the "
           "plain loop")
     print(f"suite machinery, serial    : {100 * ((n / wall) / rows['suite, serial'] - 1):+6.1f} % "
