@@ -2,7 +2,7 @@
 
     python benchmarks/suite_scaling.py [--levels 12] [--repeat 2] [--keep DIR]
 
-The same suite (3 PEER records of tests/data/peer, full length, 5 laws x 2 walls, IDA stripes
+The same suite (the PEER records of tests/data/peer, full length, 5 laws x 2 walls, IDA stripes
 on Sa(3.5 s prototype)) is run
 
 1. in a plain loop in one process (femoat.run.run, nothing else: model, motion, run, peaks),
@@ -11,11 +11,11 @@ on Sa(3.5 s prototype)) is run
 
 Printed: runs/s (steady: from the first submission to the last result; and overall, with the
 cluster start-up), parallel efficiency of 2 workers against 1, the rate the workers' CPU per
-run would allow with a free core each (the machine's other users aside), Dask's overhead against the plain
-loop, the CPU of a run split into solver (the compiled loop) and everything else (in the
-worker), and the client's CPU per run (with a LocalCluster the scheduler runs in the client).
-Each setting is run ``--repeat`` times and the fastest is shown. The
-machine's 2 cores may be shared: read the numbers as of the moment they were measured.
+run would allow with a free core each (the machine's other users aside), Dask's overhead
+against the plain loop, the CPU of a run split into solver (the compiled loop) and everything
+else (in the worker), and the client's CPU per run (with a LocalCluster the scheduler runs in
+the client). Each setting is run ``--repeat`` times and the fastest is shown. The machine's
+2 cores may be shared: read the numbers as of the moment they were measured.
 """
 
 import argparse
@@ -106,7 +106,8 @@ def main():
         rows[name] = summary["runs_per_second"]
         cpu_run[name] = df["cpu_seconds"].mean()
         print(f"{name:27s}: {summary['runs_per_second']:7.1f} runs/s steady, "
-              f"{summary['runs'] / total:6.1f} overall (start-up {total - summary['elapsed']:4.1f} s)"
+              f"{summary['runs'] / total:6.1f} overall "
+              f"(start-up {total - summary['elapsed']:4.1f} s)"
               f"   CPU/run {1e3 * df['cpu_seconds'].mean():6.1f} ms (solver "
               f"{1e3 * df['solver_seconds'].mean():5.1f} ms, rest "
               f"{1e3 * (df['cpu_seconds'] - df['solver_seconds']).mean():5.1f} ms); client "

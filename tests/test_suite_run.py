@@ -86,7 +86,8 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
     factor = 1.5 / float(response_spectrum(gm.time_scaled(0.5), 0.5, 0.05).psa)
     assert row["scale_factor"] == factor
     building = building_from_dict({})
-    model = PoundingModel(building, walls_from_dict({"law": "H"}, base_mass=building.base_weight / G))
+    walls = walls_from_dict({"law": "H"}, base_mass=building.base_weight / G)
+    model = PoundingModel(building, walls)
     # the suite's default criteria: drift ratio 0.10, isolator capacity 7 in, stop at collapse
     ref = run(model, gm.scaled(factor).time_scaled(0.5), extra_time=0.5,
               collapse=CollapseCriteria())
@@ -144,7 +145,8 @@ def test_a_run_that_cannot_converge_is_stored_and_the_suite_goes_on(tmp_path):
 
 
 def _cli(args, **kw):
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    path = os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])
+    env = {**os.environ, "PYTHONPATH": path}
     return subprocess.Popen([sys.executable, "-m", "femoat.cli", "suite", *map(str, args)],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)
 

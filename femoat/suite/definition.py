@@ -161,6 +161,10 @@ def suite_from_dict(d, base_dir=Path(".")):
     from femoat.suite.model import build_model
 
     _check_keys(d, TABLES, "suite")
+    for table in TABLES & set(d):
+        if not isinstance(d[table], dict):
+            raise ValueError(f"suite: [{table}] must be a table (a [{table}] header with keys), "
+                             f"not {d[table]!r}.")
     run = dict(d.get("run", {}))
     _check_keys(run, RUN_KEYS, "[run]")
     policy = run.get("solver_failure", "separate")
@@ -172,7 +176,9 @@ def suite_from_dict(d, base_dir=Path(".")):
     histories = run.get("histories", [])
     if not isinstance(histories, list) or not all(isinstance(h, str) for h in histories):
         raise ValueError("[run] histories must be a list of run_id strings.")
-    stop = bool(run.get("stop_on_collapse", True))
+    stop = run.get("stop_on_collapse", True)
+    if not isinstance(stop, bool):
+        raise ValueError(f"[run] stop_on_collapse = {stop!r} must be true or false.")
 
     rd = dict(d.get("records", {}))
     if not rd:
@@ -214,6 +220,6 @@ def _number(d, key, default, where, zero=False):
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
             or value < 0 or (value == 0 and not zero):
-        raise ValueError(f"{where} {key} = {value!r} must be a {'non-negative' if zero else 'positive'} "
-                         "number.")
+        kind = "non-negative" if zero else "positive"
+        raise ValueError(f"{where} {key} = {value!r} must be a {kind} number.")
     return float(value)

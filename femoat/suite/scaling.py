@@ -95,11 +95,10 @@ def scaling_from_dict(d, refs, time_scale, duration):
             raise ValueError(f"[scaling] method = {method!r} needs {key} = [...] [g]"
                              + (" or hunt_fill = true" if method == "ida" else "") + ".")
         levels = _positive_list(d, key, [1.0] if method == "p695" else None)
-    for key in ("hunt_fill", "step0", "step_increment", "resolution", "max_runs", "levels",
-                "multipliers", "targets", "sdc", "im"):
-        used = {"p695": {"multipliers", "sdc"}, "pga": {"targets", "sdc"},
-                "ida": {"im", "levels", "sdc"} | ({"hunt_fill", "step0", "step_increment", "resolution",
-                                           "max_runs"} if hunt else {"hunt_fill"})}[method]
+    hunt_keys = {"hunt_fill", "step0", "step_increment", "resolution", "max_runs"}
+    used = {"p695": {"multipliers", "sdc"}, "pga": {"targets", "sdc"},
+            "ida": {"im", "levels", "sdc"} | (hunt_keys if hunt else {"hunt_fill"})}[method]
+    for key in hunt_keys | {"levels", "multipliers", "targets", "sdc", "im"}:
         if key in d and key not in used:
             raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
                              + (" without hunt_fill = true" if method == "ida" else "") + ".")
