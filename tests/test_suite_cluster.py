@@ -90,3 +90,16 @@ def test_suite_on_a_two_worker_cluster_equals_the_serial_run(cluster, tmp_path):
     assert again["todo"] == 6 and again["runs"] == 6
     got = load_table(tmp_path / "dask").sort_values("run_id").reset_index(drop=True)
     pd.testing.assert_frame_equal(got.drop(columns=timing), want)
+
+
+def test_local_cluster_by_default(tmp_path):
+    # what `femoat suite FILE` does without --serial: a LocalCluster of single-threaded workers
+    path = tmp_path / "suite.toml"
+    files = [(PEER / "Rinaldi228.AT2").as_posix()]
+    text = SUITE.format(files=json.dumps(files)).replace('["E", "H"]', '["H"]')
+    path.write_text(text.replace("duration = 3.0", "duration = 1.0"), encoding="utf-8")
+    summary = run_suite(load_suite(path), tmp_path / "out", workers=1, stream=io.StringIO())
+    # 1 record x 1 law x 2 PGAs
+    assert summary["runs"] == 2 and summary["failed_tasks"] == 0
+    assert summary["worker_kernels"] == [summary["kernels"]]
+    assert len(load_table(tmp_path / "out")) == 2
