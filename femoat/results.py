@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from femoat.atomic import atomic_path
+from femoat.dense_peaks import hermite_abs_max, linear_accel_velocity_abs_max
 from femoat.units import G
 
 ARRAY_UNITS = {
@@ -171,11 +172,38 @@ class RunResult:
         rows.sort(key=lambda r: r["start"])
         return rows
 
+    def _continuous_peak(self, x, v):
+        """max |x| over the run, inside the steps when the velocities v were recorded."""
+        if v is None:
+            return float(np.abs(x).max()) if x.size else 0.0
+        return hermite_abs_max(self.time, x, v)
+
+    def wall_velocity(self):
+        """Wall velocity at the impact point [in/s], per contact (columns as wall_displacement)."""
+        self._require("velocity")
+        out = np.zeros((self.time.size, len(self.meta["walls"])))
+        for c, w in enumerate(self.meta["walls"]):
+            for col, phi in zip(w["cols"], w["phi"]):
+                out[:, c] += phi * self.velocity[:, col]
+        return out
+
     def _peaks(self):
+        """Peaks of the continuous solution (femoat.dense_peaks): displacements and drifts
+        inside each step from the Hermite interpolant; accelerations (linear in a step) at the
+        step ends."""
         imp = self.meta["impacts"]
         ns = self.meta["n_struct"]
         wall = self.wall_displacement()
         acc = self.absolute_acceleration() if self.acceleration.shape[1] else None
+        has_v = self.velocity.shape[1] > 0
+        vel = self.velocity[:, :ns] if has_v else None
+        drift = self.story_drifts()
+        drift_v = np.diff(vel, axis=1) if has_v else None
+        wall_v = self.wall_velocity() if has_v else None
+        peak_drift = [self._continuous_peak(drift[:, k], None if drift_v is None else drift_v[:, k])
+                      for k in range(drift.shape[1])]
+        peak_wall = [self._continuous_peak(wall[:, c], None if wall_v is None else wall_v[:, c])
+                     for c in range(wall.shape[1])]
         out = {
             "peak_impact_force": max((r["peak_force"] for r in imp), default=0.0),
             "peak_impact_force_pos": max((r["peak_force"] for r in imp if r["side"] == "pos"),
@@ -184,16 +212,19 @@ class RunResult:
                                          default=0.0),
             "impacts_pos": sum(r["side"] == "pos" for r in imp),
             "impacts_neg": sum(r["side"] == "neg" for r in imp),
-            "peak_base_displacement": float(np.abs(self.base_displacement).max()),
-            "peak_wall_displacement": float(np.abs(wall).max()) if wall.size else 0.0,
-            **{f"peak_wall_displacement_{name}": float(np.abs(wall[:, c]).max())
+            "peak_base_displacement": self._continuous_peak(self.base_displacement,
+                                                            None if vel is None else vel[:, 0]),
+            "peak_base_velocity": (linear_accel_velocity_abs_max(
+                self.time, vel[:, 0], self.acceleration[:, 0])
+                if has_v and self.acceleration.shape[1] else None),
+            "peak_wall_displacement": max(peak_wall, default=0.0),
+            **{f"peak_wall_displacement_{name}": peak_wall[c]
                for c, name in enumerate(self.meta["contact_names"])},
             "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
             "peak_impulse": max((r["impulse"] for r in imp), default=0.0),
-            "peak_drift": [float(x) for x in np.abs(self.story_drifts()).max(axis=0)],
-            "peak_drift_ratio": [float(x) / h for x, h in
-                                 zip(np.abs(self.story_drifts()).max(axis=0),
-                                     self.meta.get("story_heights", []))],
+            "peak_drift": peak_drift,
+            "peak_drift_ratio": [x / h for x, h in
+                                 zip(peak_drift, self.meta.get("story_heights", []))],
             "peak_floor_acceleration": [float(x) for x in (np.abs(acc[:, 1:ns]).max(axis=0) / G)]
             if acc is not None else None,
             "peak_base_acceleration": float(np.abs(acc[:, 0]).max() / G) if acc is not None else None,

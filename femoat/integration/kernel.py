@@ -14,8 +14,10 @@ with nonlinear two-node elements e (node j = −1 is the ground) and contacts c 
 HHT-α (α in [−1/3, 0]; α = 0 is Newmark) balances
 M·a₁ + (1+α)·F(u₁, v₁) − α·F(u₀, v₀) = (1+α)·p₁ − α·p₀ with Newmark's kinematics.
 
-Step control: the Zienkiewicz-Xie local error h²·|β − 1/6|·|a₁ − a₀| per DOF, scaled by
-rtol·scale_i (with a separate, tighter scale vector while any contact is closed); steps never
+Step control: the Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa| per DOF, measured in the DOF's
+own coordinate (a floor by its story's drift, Δa_i − Δa_ref(i)) and scaled by rtol·scale_i (the
+story's yield drift, the gap; a separate, tighter scale vector while any contact is closed;
+see :func:`femoat.integration.solve.error_scales`); steps never
 cross a sample of the ground record (a_g is linear between samples); a gap closing or opening
 inside a step shortens the step until it ends within gap_tol of δ = 0, where the contact episode
 starts (capturing δ̇₀) or ends.
@@ -292,7 +294,7 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
               M, C, K, r, ag,
               el_i, el_j, el_code, el_P, el_S, el_f, el_d, el_W,
               c_B, c_gap, c_code, c_P, c_H, c_f, c_d, c_W, c_closed,
-              scale_open, scale_contact, fopt, iopt,
+              scale_open, scale_contact, err_ref, fopt, iopt,
               energy, stats, limits, first_exceed,
               out_t, out_u, out_v, out_a, out_ag, out_ef, out_ed, out_cf, out_cd, out_cv,
               out_closed,
@@ -499,7 +501,12 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
         err = 0.0
         for i in range(n):
             sc = scale_contact[i] if any_closed else scale_open[i]
-            q = hh * hh * err_coef * abs(w_a[i] - a[i]) / (rtol * sc)
+            # measured in the DOF's own coordinate: a story's drift against its floor below
+            da = w_a[i] - a[i]
+            j = err_ref[i]
+            if j >= 0:
+                da -= w_a[j] - a[j]
+            q = hh * hh * err_coef * abs(da) / (rtol * sc)
             if q > err:
                 err = q
         if err > 1.0 and hh > hmin:

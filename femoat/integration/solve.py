@@ -8,6 +8,7 @@ import numpy as np
 
 from femoat.integration import kernel as kn
 from femoat.integration.settings import Integrator
+from femoat.structure.building import yield_drift
 
 
 class SolverError(RuntimeError):
@@ -94,14 +95,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     if u.shape != (n,) or v.shape != (n,) or not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
         raise ValueError(f"u0 and v0 must be finite arrays of length {n} ({packed.dof_names}).")
 
-    # DOF scales [in] for error control: the gap while open, δ_me near contacts while closed.
-    gaps = packed.c_gap
-    gap_scale = float(np.max(gaps)) if gaps.size and np.max(gaps) > 0 else 1.0
-    d_me = min((w.law.params.delta_me for w in packed.walls), default=gap_scale)
-    scale_open = np.full(n, gap_scale)
-    scale_contact = scale_open.copy()
-    scale_contact[0] = d_me
-    scale_contact[packed.n_struct:] = d_me
+    scale_open, scale_contact, err_ref = error_scales(packed)
+    d_me = float(scale_contact[0])
     # first step after closure: a fraction of the local contact half-period π·√(m/k_eff)
     h_contact = math.inf
     for c, w in enumerate(packed.walls):
@@ -184,7 +179,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             packed.M, packed.C, packed.K, packed.r, ag,
             packed.el_i, packed.el_j, packed.el_code, packed.el_P, el_S, el_f, el_d, el_W,
             packed.c_B, packed.c_gap, packed.c_code, packed.c_P, c_H, c_f, c_d, c_W, c_closed,
-            scale_open, scale_contact, fopt, iopt, energy, stats, limits, first_exceed,
+            scale_open, scale_contact, err_ref, fopt, iopt, energy, stats, limits, first_exceed,
             *[bufs[key] for key in _BUF_KEYS],
             w["u"], w["v"], w["a"], w["F"], w["KT"], w["CT"], w["A"], w["b"], w["ef"], w["ed"],
             w["cf"], w["cd"],
@@ -230,6 +225,34 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
+
+
+def error_scales(packed):
+    """(scale while all gaps are open, scale while a contact is closed, reference DOF) of each
+    DOF's local error [in].
+
+    The error of a floor is measured on its story's drift (against the floor below,
+    ``err_ref``), scaled by the story's yield drift: a story's response is judged on its own
+    scale, not on the base's. The base mat and the walls are measured on their own coordinates,
+    scaled by the gap while all gaps are open (a wall's ground-driven motion while open is small
+    against its impact response and does not reach the building) and by δ_me, the contact's
+    expected indentation, while a contact is closed.
+    """
+    n, ns = packed.n, packed.n_struct
+    gaps = packed.c_gap
+    gap_scale = float(np.max(gaps)) if gaps.size and np.max(gaps) > 0 else 1.0
+    d_me = min((w.law.params.delta_me for w in packed.walls), default=gap_scale)
+    scale_open = np.full(n, gap_scale)
+    scale_contact = scale_open.copy()
+    scale_contact[0] = d_me
+    scale_contact[ns:] = d_me
+    err_ref = np.full(n, -1, dtype=np.int64)
+    for name, i, j, mat in zip(packed.el_names, packed.el_i, packed.el_j, packed.el_materials):
+        if name.startswith("story") and j >= 0:
+            err_ref[i] = j
+            drift = yield_drift(mat)
+            scale_open[i] = scale_contact[i] = min(gap_scale, drift) if drift else gap_scale
+    return scale_open, scale_contact, err_ref
 
 
 _INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code")
