@@ -40,7 +40,10 @@ def to_demand_csv(df, path, n_stories=None):
     floor slab above the isolators) [g], ``PFA-{k+1}-1`` the floor on top of story k [g] and
     ``PID-k-1`` the peak drift ratio of story k [rad] (story k spans floors k and k+1). The
     second row holds the units (``Units,g,...,rad``); the index is the run_id. Filter ``df`` to
-    one stripe (intensity, variation) first: pelicun reads one sample per hazard level.
+    one stripe (intensity, variation) and to the runs that did not collapse first
+    (``df[~df.collapsed & (df.status == "ok")]``): pelicun reads one sample per hazard level and
+    treats collapse through its own fragility, and a run stopped at collapse has peaks only up
+    to that time.
     """
     import pandas as pd
 
