@@ -103,3 +103,36 @@ def test_local_cluster_by_default(tmp_path):
     assert summary["runs"] == 2 and summary["failed_tasks"] == 0
     assert summary["worker_kernels"] == [summary["kernels"]]
     assert len(load_table(tmp_path / "out")) == 2
+
+
+def test_a_run_that_kills_its_task_is_isolated_and_stored(tmp_path, monkeypatch):
+    # a worker thread in this process (processes=False) sees a run_batch that fails whenever
+    # its batch holds one particular run: the batch is split, the others are stored
+    from dask.distributed import LocalCluster
+
+    from femoat.suite import runs
+
+    path = tmp_path / "suite.toml"
+    files = [(PEER / "Rinaldi228.AT2").as_posix()]
+    path.write_text(SUITE.format(files=json.dumps(files)).replace("batch_size = 2",
+                                                                  "batch_size = 4"))
+    suite = load_suite(path)
+    poisoned = runs.plan(suite)[1].run_id
+    real = runs.run_batch
+
+    def run_batch(suite, specs, out_dir=None):
+        if any(s.run_id == poisoned for s in specs):
+            raise RuntimeError("worker lost")
+        return real(suite, specs, out_dir)
+
+    monkeypatch.setattr(runs, "run_batch", run_batch)
+    with LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cluster:
+        summary = run_suite(suite, tmp_path / "out", scheduler=cluster.scheduler_address,
+                            stream=io.StringIO())
+    df = load_table(tmp_path / "out")
+    # 1 record x 2 laws x 2 PGAs = 4 runs in one batch: split into 4, 3 ok and 1 error row
+    assert summary["runs"] == 4 and len(df) == 4
+    bad = df[df["run_id"] == poisoned].iloc[0]
+    assert bad["status"] == "error" and "worker lost" in bad["error"]
+    assert bad["error"].startswith(f"run {poisoned} (")
+    assert set(df[df["run_id"] != poisoned]["status"]) <= {"ok", "collapsed"}

@@ -7,7 +7,8 @@
   version changed) is refused, so old and new rows never mix: choose another ``--out`` or pass
   ``--overwrite`` to delete the old results.
 * Runs go to workers in batches (``[run] batch_size``); a hunt-and-fill trace is one task (it is
-  sequential). Each finished task's rows are written at once, so an interruption (Ctrl-C, a
+  sequential). A batch whose task fails as a whole (a run that kills its worker three times)
+  is rerun one run per task, and the run that still fails is stored with status 'error'. Each finished task's rows are written at once, so an interruption (Ctrl-C, a
   killed worker or client) loses at most the tasks in flight.
 * Workers use the ahead-of-time kernels (:mod:`femoat.aot`), built once in the client if
   missing (about 25 s, once per machine); without them they fall back to numba's JIT.
@@ -188,22 +189,35 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         client.run(rn.warm, suite)  # per worker: models built, record set loaded, once
         progress.restart()
         absolute = str(Path(out).resolve())
-        for task in tasks:
+
+        def submit(task):
             if task[0] == "batch":
                 f = client.submit(rn.run_batch, shared, task[1], absolute, pure=False)
             else:
                 f = client.submit(rn.run_trace, shared, task[1], task[2], task[3], absolute,
                                   pure=False)
             futures[f] = task
-        for f in as_completed(list(futures)):
+            return f
+
+        pending_futures = as_completed([submit(task) for task in tasks])
+        for f in pending_futures:
             task = futures.pop(f)  # dropping the future frees its result on the cluster
             try:
                 rows = f.result()
-            except Exception as exc:  # noqa: BLE001 - e.g. a worker killed too often
-                summary["failed_tasks"] += 1
-                progress.stream.write(f"\nfemoat suite: a task failed ({type(exc).__name__}: "
-                                      f"{exc}); its runs are not stored: rerun to retry them\n")
-                continue
+            except Exception as exc:  # noqa: BLE001 - e.g. a run that kills its worker
+                if task[0] == "batch" and len(task[1]) > 1:
+                    # run the batch's runs one by one, so that only the culprit is lost
+                    for s in task[1]:
+                        pending_futures.add(submit(("batch", [s])))
+                    continue
+                if task[0] == "batch":
+                    rows = [rn.failed_row(suite, task[1][0], exc)]
+                else:
+                    summary["failed_tasks"] += 1
+                    progress.stream.write(f"\nfemoat suite: a hunt-and-fill trace failed "
+                                          f"({type(exc).__name__}: {exc}); its runs are not "
+                                          "stored: rerun to retry it\n")
+                    continue
             _finish(suite, out, task, rows, progress)
     finally:
         for f in futures:

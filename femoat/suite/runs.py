@@ -131,6 +131,15 @@ def run_one(suite, s, out_dir=None):
     return row
 
 
+def failed_row(suite, s, exc):
+    """The row of a run whose task failed outside :func:`run_one` (e.g. its worker died)."""
+    row = _identity(suite, s)
+    row.update(status="error", error=f"run {s.run_id} ({_describe(suite, s)}): its task failed "
+               f"on the cluster ({type(exc).__name__}: {exc}), e.g. the run kills its worker",
+               cpu_seconds=math.nan)
+    return row
+
+
 def _describe(suite, s):
     r = suite.records[s.rec]
     return (f"{r.record_name} ({r.label}) x {suite.scaling.factor(s.rec, s.im):.6g}, "
