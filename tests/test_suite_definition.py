@@ -161,3 +161,8 @@ multipliers = [1.0, 2.0]
         sa.append(float(response_spectrum(applied, 0.5).psa))
     assert len(sa) == 6
     assert np.median(sa) == pytest.approx(smt(1.0, "Dmax"), abs=1e-6)
+    # anchor = "table": FEMA P695's SF1 = S_MT / S_NRT(1 s, far field) = 0.9 / 0.348
+    table = load_suite(_write(tmp_path, text.replace('sdc = "Dmax"',
+                                                     'sdc = "Dmax"\nanchor = "table"')))
+    assert table.scaling.anchor == pytest.approx(0.9 / 0.348, rel=1e-12)
+    assert table.scaling.sf1_table == suite.scaling.sf1_table == table.scaling.anchor

