@@ -8,8 +8,9 @@
   ``--overwrite`` to delete the old results.
 * Runs go to workers in batches (``[run] batch_size``); a hunt-and-fill trace is one task (it is
   sequential). A batch whose task fails as a whole (a run that kills its worker three times)
-  is rerun one run per task, and the run that still fails is stored with status 'error'. Each finished task's rows are written at once, so an interruption (Ctrl-C, a
-  killed worker or client) loses at most the tasks in flight.
+  is rerun one run per task, and the run that still fails is stored with status 'error'.
+  Each finished task's rows are written at once, so an interruption (Ctrl-C, a killed worker
+  or client) loses at most the tasks in flight.
 * Workers use the ahead-of-time kernels (:mod:`femoat.aot`), built once in the client if
   missing (about 25 s, once per machine); without them they fall back to numba's JIT.
 * On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
