@@ -15,29 +15,43 @@ import numpy as np
 def hermite_abs_max(t, x, v):
     """max |x(t)| of the piecewise cubic Hermite interpolant through (t, x, ẋ = v).
 
-    t [s], x and v (same length; v in x's unit per second). Intervals of zero length (an event
-    recorded twice at one instant) are skipped.
+    t [s] (m samples); x and v of shape (m,) or (m, k) for k channels at once (v in x's unit
+    per second); returns a float, or k floats. Intervals of zero length (an event recorded twice
+    at one instant) are skipped.
     """
-    t, x, v = (np.asarray(a, dtype=float) for a in (t, x, v))
-    peak = float(np.abs(x).max()) if x.size else 0.0
-    if x.size < 2:
-        return peak
-    h = np.diff(t)
-    x0, x1, v0, v1 = x[:-1], x[1:], h * v[:-1], h * v[1:]
-    # dx/dθ = A·θ² + B·θ + C on θ ∈ [0, 1]
-    a = 6.0 * (x0 - x1) + 3.0 * (v0 + v1)
-    b = 6.0 * (x1 - x0) - 4.0 * v0 - 2.0 * v1
-    c = v0
-    for th in _roots_in_unit_interval(a, b, c):
-        ok = np.isfinite(th) & (h > 0.0)
-        if not ok.any():
-            continue
-        s = th[ok]
-        s2, s3 = s * s, s * s * s
-        xs = ((2 * s3 - 3 * s2 + 1) * x0[ok] + (s3 - 2 * s2 + s) * v0[ok]
-              + (-2 * s3 + 3 * s2) * x1[ok] + (s3 - s2) * v1[ok])
-        peak = max(peak, float(np.abs(xs).max()))
-    return peak
+    t = np.asarray(t, dtype=float)
+    x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
+    if x.ndim == 2:  # column by column: contiguous 1-D work is faster than one 2-D pass
+        return [hermite_abs_max(t, x[:, k], v[:, k]) for k in range(x.shape[1])]
+    one = True
+    x, v = x[:, None], v[:, None]
+    if x.shape[0] == 0:
+        return 0.0 if one else [0.0] * x.shape[1]
+    ax = np.abs(x)
+    peak = ax.max(axis=0)
+    if x.shape[0] >= 2:
+        h = np.diff(t)[:, None]
+        hv0, hv1 = np.abs(h * v[:-1]), np.abs(h * v[1:])
+        # |x(θ)| ≤ max(|x₀|, |x₁|) + 4/27·(h|v₀| + h|v₁|) (the Hermite basis: h00 + h01 = 1,
+        # |h10|, |h11| ≤ 4/27): only intervals whose bound passes the largest sample can hold
+        # the crest, and only those are searched
+        bound = np.maximum(ax[:-1], ax[1:]) + (4.0 / 27.0) * (hv0 + hv1)
+        candidate = (bound > peak) & (h > 0.0)
+        for k in range(x.shape[1]):
+            i = np.flatnonzero(candidate[:, k])
+            if i.size == 0:
+                continue
+            hk = h[i, 0]
+            x0, x1, v0, v1 = x[i, k], x[i + 1, k], hk * v[i, k], hk * v[i + 1, k]
+            # dx/dθ = A·θ² + B·θ + C on θ ∈ [0, 1]
+            a = 6.0 * (x0 - x1) + 3.0 * (v0 + v1)
+            b = 6.0 * (x1 - x0) - 4.0 * v0 - 2.0 * v1
+            for s in _roots_in_unit_interval(a, b, v0):
+                s2, s3 = s * s, s * s * s
+                xs = ((2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * v0
+                      + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * v1)
+                peak[k] = np.fmax(peak[k], np.nanmax(np.abs(xs), initial=0.0))
+    return float(peak[0]) if one else [float(p) for p in peak]
 
 
 def linear_accel_velocity_abs_max(t, v, a):

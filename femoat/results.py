@@ -172,10 +172,11 @@ class RunResult:
         rows.sort(key=lambda r: r["start"])
         return rows
 
-    def _continuous_peak(self, x, v):
-        """max |x| over the run, inside the steps when the velocities v were recorded."""
+    def _continuous_peaks(self, x, v):
+        """max |x| over the run per column, inside the steps when the velocities v were
+        recorded (else at the recorded samples)."""
         if v is None:
-            return float(np.abs(x).max()) if x.size else 0.0
+            return [float(p) for p in np.abs(x).max(axis=0)] if x.size else [0.0] * x.shape[1]
         return hermite_abs_max(self.time, x, v)
 
     def wall_velocity(self):
@@ -200,10 +201,8 @@ class RunResult:
         drift = self.story_drifts()
         drift_v = np.diff(vel, axis=1) if has_v else None
         wall_v = self.wall_velocity() if has_v else None
-        peak_drift = [self._continuous_peak(drift[:, k], None if drift_v is None else drift_v[:, k])
-                      for k in range(drift.shape[1])]
-        peak_wall = [self._continuous_peak(wall[:, c], None if wall_v is None else wall_v[:, c])
-                     for c in range(wall.shape[1])]
+        peak_drift = self._continuous_peaks(drift, drift_v)
+        peak_wall = self._continuous_peaks(wall, wall_v)
         out = {
             "peak_impact_force": max((r["peak_force"] for r in imp), default=0.0),
             "peak_impact_force_pos": max((r["peak_force"] for r in imp if r["side"] == "pos"),
@@ -212,8 +211,8 @@ class RunResult:
                                          default=0.0),
             "impacts_pos": sum(r["side"] == "pos" for r in imp),
             "impacts_neg": sum(r["side"] == "neg" for r in imp),
-            "peak_base_displacement": self._continuous_peak(self.base_displacement,
-                                                            None if vel is None else vel[:, 0]),
+            "peak_base_displacement": self._continuous_peaks(
+                self.displacement[:, :1], None if vel is None else vel[:, :1])[0],
             "peak_base_velocity": (linear_accel_velocity_abs_max(
                 self.time, vel[:, 0], self.acceleration[:, 0])
                 if has_v and self.acceleration.shape[1] else None),

@@ -145,3 +145,11 @@ def test_scenario_keys_and_bad_values():
         Building(story_heights=(39.0, 0.0, 39.0))
     with pytest.raises(ValueError, match="isolator_capacity"):
         Building(isolator_capacity=-1.0)
+
+
+def test_opensees_twin_refuses_p_delta():
+    # the twin has no geometric stiffness: a P-Delta model must not be cross-checked silently
+    from femoat.opensees.building import _check_model
+
+    with pytest.raises(ValueError, match="p_delta"):
+        _check_model(paper_model("concrete", "H", building=Building(p_delta=True)))

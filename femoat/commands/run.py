@@ -44,6 +44,8 @@ def run(args):
         pf.plot_global_response({(wall, law): result}, out / "global_response.png")
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
+    if result.collapse is not None:
+        summary["collapse"] = result.collapse
     if args.json:
         print(json.dumps(summary))
     else:

@@ -91,6 +91,9 @@ def _check_model(model):
         raise ValueError(
             "isolator: a velocity-dependent friction coefficient (mu_fast) has no exact OpenSees "
             "twin here (ElasticPP friction is constant-μ); set mu_fast=None to cross-check.")
+    if model.building.p_delta:
+        raise ValueError("building: the OpenSees twin has no P-Delta (p_delta=True); build the "
+                         "Building with p_delta=False to cross-check it.")
     for w in model.walls:
         if not isinstance(w.wall, SdofWall):
             raise ValueError("walls: the OpenSees twin takes SDOF walls only (SdofWall); reduce "
