@@ -216,3 +216,21 @@ def test_hunt_and_fill_suite_resumes_its_traces(tmp_path):
 
     assert main(["suite", "report", str(tmp_path / "out")]) == 0
     assert (tmp_path / "out" / "report" / "collapse_summary.csv").is_file()
+
+
+def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys):
+    # the command a user runs: the runs, then the report in OUT/report (IDA stripes at 0.5 and
+    # 1.5 g for 3 records x 2 laws = 12 runs)
+    from femoat.cli import main
+
+    out = tmp_path / "out"
+    assert main(["suite", str(_suite(tmp_path)), "--serial", "--out", str(out)]) == 0
+    assert len(load_table(out)) == 12
+    for name in ("collapse_summary.csv", "response_by_variation.csv", "README.txt"):
+        assert (out / "report" / name).stat().st_size > 0
+    assert "report in" in capsys.readouterr().out
+    # --no-report leaves the report out (a rerun resumes: nothing to run)
+    out2 = tmp_path / "out2"
+    assert main(["suite", str(_suite(tmp_path)), "--serial", "--out", str(out2),
+                 "--no-report"]) == 0
+    assert not (out2 / "report").exists()

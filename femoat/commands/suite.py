@@ -34,6 +34,8 @@ def add_parser(sub):
     p.add_argument("--check", action="store_true",
                    help="only validate the suite file and print what would run")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--no-report", action="store_true",
+                   help="do not write the report (OUT/report/) after the runs")
     return p
 
 
@@ -76,10 +78,15 @@ def run(args):
         print(f"\nfemoat suite: interrupted; finished batches are stored in {out}: rerun the "
               "same command to resume", file=sys.stderr)
         return 130
+    if not args.no_report and any((Path(out) / "runs").glob("*.parquet")):
+        from femoat.suite.report import run_report
+
+        summary["report"] = [str(p) for p in run_report(out)]
     if args.json:
         print(json.dumps(summary))
     else:
         print(f"suite {suite.hash} (period {suite.scaling.period} s prototype, time_scale "
               f"{suite.time_scale}): {summary['runs']} runs, {summary['collapses']} collapses, "
-              f"{summary['failures']} failures; results in {out}/runs")
+              f"{summary['failures']} failures; results in {out}/runs"
+              + (f", report in {out}/report" if "report" in summary else ""))
     return 0 if summary["failed_tasks"] == 0 else 1
