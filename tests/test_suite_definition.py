@@ -124,7 +124,7 @@ def test_headline_suite_model_and_scaling_validate():
     d = tomllib.loads(HEADLINE.read_text(encoding="utf-8"))
     d["records"].update(ids=[1], components=["a"])  # one record: keep the test fast
     suite = suite_from_dict(d)
-    assert len(suite.combos) == 10 and suite.scaling.hunt["max_runs"] == 16
+    assert len(suite.combos) == 10 and suite.scaling.hunt["max_runs"] == 20
 
 
 def test_p695_anchoring_brings_the_median_sa_to_smt(tmp_path):
