@@ -12,6 +12,17 @@ from pathlib import Path  # noqa: E402
 
 # Test records shipped with the repository (provenance, licence and sha256 in data/README.md).
 DATA = Path(__file__).resolve().parent / "data"
+SUITE_RECORDS = ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2", "RSN181_IMPVALL.H_H-E06230.AT2")
+
+
+def three_records(folder):
+    """A folder holding three of the shipped PEER records (the suites' tests use these)."""
+    import shutil
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in SUITE_RECORDS:
+        shutil.copyfile(DATA / "peer" / name, folder / name)
+    return folder
 
 
 # ---- the optional OpenSees cross-checks: one probe, one skip reason ----------------------------

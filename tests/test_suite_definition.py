@@ -1,24 +1,15 @@
 """Suite files: validation before any run (errors name the key or file), P695 anchoring."""
 
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from femoat.cli import main
+from conftest import DATA, three_records
 from femoat.suite import load_suite
 
-PEER = Path(__file__).parent / "data" / "peer"
-THREE = ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2", "RSN181_IMPVALL.H_H-E06230.AT2")
-
-
-def _three_records(folder):
-    """A folder holding three of the shipped PEER records (the suites' tests use these)."""
-    folder.mkdir(parents=True, exist_ok=True)
-    for name in THREE:
-        shutil.copyfile(PEER / name, folder / name)
-    return folder
+PEER = DATA / "peer"
 
 GOOD = """
 [records]
@@ -32,7 +23,7 @@ levels = [0.2, 0.4]
 
 
 def _write(tmp_path, text, folder=None):
-    folder = folder or _three_records(tmp_path / "peer")
+    folder = folder or three_records(tmp_path / "peer")
     path = tmp_path / "suite.toml"
     path.write_text(text.format(folder=folder.as_posix()), encoding="utf-8")
     return path
@@ -82,7 +73,7 @@ def test_empty_record_folder_is_named(tmp_path, capsys):
 
 
 def test_malformed_at2_among_good_ones_is_named(tmp_path, capsys):
-    folder = _three_records(tmp_path / "records")
+    folder = three_records(tmp_path / "records")
     good = (PEER / "Rinaldi228.AT2").read_text(encoding="latin-1").splitlines()
     # a truncated copy: the header promises NPTS values, the body stops after 10 lines
     (folder / "Broken.AT2").write_text("\n".join(good[:14]) + "\n", encoding="latin-1")

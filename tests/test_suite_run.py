@@ -1,7 +1,6 @@
 """Running suites: same numbers as run(), failures stored, resume after a kill, exports."""
 
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -12,18 +11,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import DATA, three_records
 from femoat.suite import load_suite, load_table, run_suite, to_demand_csv, to_xarray
 
-PEER = Path(__file__).parent / "data" / "peer"
-THREE = ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2", "RSN181_IMPVALL.H_H-E06230.AT2")
-
-
-def _three_records(folder):
-    """A folder holding three of the shipped PEER records (the suites' tests use these)."""
-    folder.mkdir(parents=True, exist_ok=True)
-    for name in THREE:
-        shutil.copyfile(PEER / name, folder / name)
-    return folder
+PEER = DATA / "peer"
 ROOT = Path(__file__).resolve().parents[1]
 
 SMALL = """
@@ -44,7 +35,7 @@ batch_size = {batch}
 
 def _suite(tmp_path, text=SMALL, duration=3.0, batch=3, name="suite.toml"):
     path = tmp_path / name
-    folder = _three_records(tmp_path / "peer")
+    folder = three_records(tmp_path / "peer")
     path.write_text(text.format(folder=folder.as_posix(), duration=duration, batch=batch),
                     encoding="utf-8")
     return path
