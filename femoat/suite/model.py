@@ -44,12 +44,17 @@ def build_model(tables, stop_on_collapse=True, base_dir=Path(".")):
                  scenario.collapse_from_dict(collapse))
 
 
-def run_model(model, motion, extra_time):
+PEAK_CHANNELS = ("displacement", "velocity", "acceleration", "contacts")
+"""The histories a row's peaks need (the element forces and deformations are not recorded
+unless the run's history is saved: the step sequence, and so every peak, is the same)."""
+
+
+def run_model(model, motion, extra_time, history=False):
     """Run ``model`` under ``motion``; return ``(RunResult, collapse)`` where collapse is
     dict(collapsed, stopped, drift, isolator, wall_displacement, wall_force) with the time [s]
-    each criterion was first reached (None if not)."""
+    each criterion was first reached (None if not). ``history``: record every channel."""
     from femoat.run import run
 
     result = run(model.pounding, motion, model.integrator, extra_time=extra_time,
-                 collapse=model.criteria)
+                 collapse=model.criteria, channels=None if history else PEAK_CHANNELS)
     return result, dict(result.collapse)

@@ -118,9 +118,10 @@ def run_one(suite, s, out_dir=None):
         model = _model(suite, s.var)
         motion = applied_motion(suite.records[s.rec], row["scale_factor"], suite.time_scale,
                                 suite.duration)
-        result, collapse = run_model(model, motion, suite.extra_time)
+        keep = out_dir is not None and s.run_id in suite.histories
+        result, collapse = run_model(model, motion, suite.extra_time, history=keep)
         row.update(_outcome(suite, result, collapse, model))
-        if out_dir is not None and s.run_id in suite.histories:
+        if keep:
             result.save(Path(out_dir) / "histories" / f"{s.run_id}.npz")
     except SolverError as exc:
         row.update(status="solver_failure", error=f"run {s.run_id} ({_describe(suite, s)}): {exc}")
