@@ -157,6 +157,17 @@ def _finish(suite, out, task, rows, progress):
     progress.update(rows, units=len(task[1]) if task[0] == "batch" else 1)
 
 
+LOCAL_WORKER_CONFIG = {
+    # our own local workers go without Dask's statistical profiler (it samples every thread's
+    # stack every 10 ms, holding the GIL, beside runs of a few ms), and with a slower event-loop
+    # tick (20 ms: a blocked-loop check) and memory monitor (100 ms): on a small machine the
+    # workers' background threads otherwise take CPU from the runs
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.worker.memory.monitor-interval": "1s",
+}
+
+
 def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file):
     import logging
 
@@ -173,9 +184,7 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         import dask
 
         n = workers or os.cpu_count() or 1
-        # our own local workers go without Dask's statistical profiler (it samples every
-        # thread's stack every 10 ms, holding the GIL, beside runs of a few ms)
-        with dask.config.set({"distributed.worker.profile.enabled": False}):
+        with dask.config.set(LOCAL_WORKER_CONFIG):
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                    dashboard_address=None, silence_logs=logging.ERROR)
         client = Client(cluster)
