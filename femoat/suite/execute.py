@@ -184,9 +184,11 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         import dask
 
         n = workers or os.cpu_count() or 1
+        # (workers' own log lines at shutdown, e.g. a heartbeat to a scheduler already gone,
+        # are noise: a failing run reaches us through its future)
         with dask.config.set(LOCAL_WORKER_CONFIG):
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.ERROR)
+                                   dashboard_address=None, silence_logs=logging.CRITICAL)
         client = Client(cluster)
     futures = {}
     try:
