@@ -274,12 +274,12 @@ def _canonical(packed):
 
 def kernels(backend="auto"):
     """(namespace of the solver's compiled entry points, "aot" or "jit") for ``backend``."""
-    from femoat import aot
+    from femoat import compiled
 
     if backend not in ("auto", "jit", "aot"):
         raise ValueError(f"backend = {backend!r}: use 'auto', 'jit' or 'aot'.")
     if backend != "jit":
-        module = aot.load()
+        module = compiled.load()
         if module is not None:
             return module, "aot"
         if backend == "aot":

@@ -44,7 +44,7 @@ import scipy.sparse.linalg as sla
 
 from femoat.contact import kernels
 from femoat.contact.laws import ContactLaw
-from femoat.impact.single import ContactDidNotEndError, ImpactResult
+from femoat.contact.episode import ContactDidNotEndError, ImpactResult
 
 
 @dataclass(frozen=True)
