@@ -31,6 +31,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from femoat.contact import kernels
+from femoat.contact.codes import H_V0
 from femoat.contact.episode import ContactDidNotEndError, ImpactResult
 from femoat.contact.laws import ContactLaw
 from femoat.walls.sdof import SdofWall
@@ -68,7 +69,8 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     if not (0 < rtol < 1e-3):
         raise ValueError(f"rtol = {rtol!r} must be in (0, 1e-3).")
 
-    code, p = law.code, law.packed()
+    spec = law.resolved()
+    code, p = law.code, spec.params()
     h = np.zeros(kernels.N_HISTORY)
     kernels.contact_closure(h, float(v0))
     rigid = wall is None
@@ -134,11 +136,7 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         # The unclipped force of the laws that can pull: zero crossing = separation by force.
         w, wd = wall_of(y)
         d, dd = y[0] - w, y[1] - wd
-        if law.kind == "V" and not law.allow_tension:
-            return p[1] * d + p[2] * dd
-        if law.kind == "H":
-            return 1.0 + p[4] * dd / max(h[0], p[10])
-        return 1.0
+        return spec.separation_indicator(d, dd, h[H_V0])
 
     raw_force.terminal, raw_force.direction = True, -1
 
@@ -191,7 +189,7 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
         if fired[0] or fired[1]:
             break
         # turning point: the bilinear law remembers its largest indentation
-        kernels.contact_commit(h, y[0] - wall_of(y)[0])
+        kernels.contact_commit(code, h, y[0] - wall_of(y)[0])
         loading = not loading
 
     time = np.concatenate(ts)

@@ -31,15 +31,12 @@ from femoat.jit import njit
 from femoat.numba_cache import drop_stale_cache
 
 _PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [_PKG / "contact" / "kernels.py",
+drop_stale_cache(__file__, [*sorted((_PKG / "contact").glob("*.py")),
                             *sorted((_PKG / "structure" / "materials").glob("*.py"))])
 
 from femoat.contact.kernels import (  # noqa: E402
-    HERTZDAMP,
-    JANKOWSKI,
-    KELVIN_VOIGT,
     contact_closure,
-    contact_force,
+    recorded_force,
     step_commit,
     step_force,
 )
@@ -176,10 +173,7 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
             # located closure; a gap that has just opened within gap_tol carries nothing)
             c_f[c] = 0.0
             continue
-        dk = d
-        if d <= 0.0 and c_code[c] == KELVIN_VOIGT:
-            dk = 1e-300
-        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], dk, dv)
+        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], d, dv)
         c_f[c] = f
         if f != 0.0 or kf != 0.0 or cf != 0.0:
             for i in range(n):
@@ -674,8 +668,8 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 # the law's force at the recorded state; the Hertz laws' step force differs
                 # from it by the discrete gradient's O(Δδ²) trapezoidal defect
                 out_cf[k, c] = c_f[c]
-                if c_closed[c] and (c_code[c] == JANKOWSKI or c_code[c] == HERTZDAMP):
-                    out_cf[k, c] = contact_force(c_code[c], c_P[c], c_H[c], c_d[c], dd1)[0]
+                if c_closed[c]:
+                    out_cf[k, c] = recorded_force(c_code[c], c_P[c], c_H[c], c_d[c], dd1, c_f[c])
                 out_cd[k, c] = c_d[c]
                 out_cv[k, c] = dd1
                 out_closed[k, c] = c_closed[c]

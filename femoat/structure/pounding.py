@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact.kernels import N_HISTORY
+from femoat.contact.kernels import N_HISTORY, N_PARAMS
 from femoat.contact.laws import ContactLaw
 from femoat.structure.building import Building, initial_stiffness
 from femoat.units import G
@@ -149,7 +149,7 @@ class PoundingModel:
             c_B=np.array([c[0] for c in contacts]).reshape(len(contacts), n),
             c_gap=np.array([c[1].gap for c in contacts], dtype=float),
             c_code=np.array([c[1].law.code for c in contacts], dtype=np.int64),
-            c_P=_stack([c[1].law.packed() for c in contacts], width=11),
+            c_P=_stack([c[1].law.packed() for c in contacts], width=N_PARAMS),
             c_H=np.zeros((len(contacts), N_HISTORY)),
             c_names=["pos" if c[1].side > 0 else "neg" for c in contacts],
             walls=self.walls,
