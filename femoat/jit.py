@@ -55,6 +55,12 @@ class Kernel:
             self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
         return self._dispatcher
 
+    @property
+    def targetoptions(self):
+        """numba's compile options of this kernel: numba's inliner reads them (and ``py_func``)
+        from a callee, so ``njit(inline="always")`` works between femoat kernels too."""
+        return self.dispatcher.targetoptions
+
     def __call__(self, *args):
         return self.dispatcher(*args)
 
