@@ -1,7 +1,7 @@
 """The building solver's kernels compiled ahead of time, so a new process starts without numba.
 
 numba's on-disk cache saves compiling, but not numba itself: importing it and initialising its
-CPU target takes about 1.2 s per process on a 2-core machine, thirty paper runs' worth. After
+CPU target costs each process more than many paper runs (measured in ``benchmarks/README.md``). After
 the first run, :func:`build` compiles the solver's entry points with ``numba.pycc`` into a
 plain CPython extension module kept in femoat's cache folder; later processes load it
 (:func:`load`, a few milliseconds) and never import numba. Results are bit-identical to the
@@ -9,8 +9,8 @@ JIT kernels (the same LLVM code).
 
 * The module is keyed by a hash of every kernel source file, the Python and numba versions and
   the platform, so an edit or an upgrade makes femoat use the JIT again until it is rebuilt.
-* ``femoat paper`` and ``femoat run`` build it once at the end of a run when it is missing (about
-  25 s; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
+* ``femoat paper`` and ``femoat run`` build it once at the end of a run when it is missing (tens
+  of seconds; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
   them femoat keeps using the JIT.
 * ``FEMOAT_AOT=0`` switches it off (load nothing, build nothing); the cache folder is
   ``$FEMOAT_CACHE`` or ``~/.cache/femoat`` (``FEMOAT_CACHE=off`` also switches it off).

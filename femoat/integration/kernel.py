@@ -63,12 +63,11 @@ F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCO
 N_FOPT = 11
 # Integer options (iopt)
 I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_LIMITS, I_N_STRUCT = 0, 1, 2, 3, 4
-N_IOPT = 5
 # I_LIMITS: what the limit states (collapse criteria) do
 LIMITS_OFF, LIMITS_RECORD, LIMITS_STOP = 0, 1, 2
 # Stats (stats), integer
-S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS, S_FAIL_INFO = range(7)
-N_STATS = 7
+S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS = range(6)
+N_STATS = 6
 # Energies (energy), float
 E_INPUT, E_VISCOUS = 0, 1
 N_ENERGY = 2
@@ -800,7 +799,6 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if not newton_step(hh, ag1, any_closed, model, state, settings, work):
             h, failed = _after_newton_failure(t, hh, model, state, settings, work, rec)
             if failed:
-                stats[S_FAIL_INFO] = -1
                 return _stop(NEWTON_FAILED, t, h, state)
             continue
         err = local_error(hh, any_closed, state, settings, work)

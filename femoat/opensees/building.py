@@ -32,7 +32,7 @@ OpenSees model (written once here)
 * Analysis: Newmark average acceleration (γ = 1/2, β = 1/4), Newton, ``NormDispIncr`` test,
   fixed dt, one ``analyze(n, dt)`` call with ``-binary`` recorders of the node displacements,
   the base and floor accelerations and the contact stresses (``cpu_seconds`` is the process
-  time of that call, recorders included: about 25 % over a bare ``analyze``).
+  time of that call, recorders included; see ``benchmarks/README.md``).
 
 Differences from femoat that remain (see :mod:`femoat.opensees.single_impact` for the contact
 materials): OpenSees' ViscoelasticGap pulls in tension (femoat's V cuts it unless
