@@ -316,7 +316,8 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw):
 
 
 def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
-    from femoat.results import _parabolic_peak
+    from femoat.dense_peaks import parabolic_peak
+    from femoat.results import impact_summary
 
     x, acc, f = hist["x"], hist["acc"], hist["f"]
     ns, nw = packed.n_struct, len(model.walls)
@@ -340,7 +341,7 @@ def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
                 t[s - 1] + dt * (-indent[s - 1, c]) / (indent[s, c] - indent[s - 1, c]))
             impacts.append(dict(
                 side=names[c], start=float(t_open), duration=float((e - s + 1) * dt),
-                peak_force=float(_parabolic_peak(t, f[:, c], k)),
+                peak_force=float(parabolic_peak(t, f[:, c], k)),
                 max_indentation=float(indent[s:e + 1, c].max()),
                 impulse=float(np.trapezoid(f[seg, c], t[seg]))))
     impacts.sort(key=lambda r: r["start"])
@@ -353,18 +354,14 @@ def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
     e_input = float(-np.sum(0.5 * (ag[:-1] + ag[1:]) * (du @ masses)))
     e_contact = [float(np.sum(0.5 * (f[1:, c] + f[:-1, c]) * np.diff(indent[:, c])))
                  for c in range(nw)]
+    hits = impact_summary(impacts)
     peaks = {
-        "peak_impact_force": max((r["peak_force"] for r in impacts), default=0.0),
-        "peak_impact_force_pos": max((r["peak_force"] for r in impacts if r["side"] == "pos"),
-                                     default=0.0),
-        "peak_impact_force_neg": max((r["peak_force"] for r in impacts if r["side"] == "neg"),
-                                     default=0.0),
-        "impacts_pos": sum(r["side"] == "pos" for r in impacts),
-        "impacts_neg": sum(r["side"] == "neg" for r in impacts),
+        **{k: hits[k] for k in ("peak_impact_force", "peak_impact_force_pos",
+                                "peak_impact_force_neg", "impacts_pos", "impacts_neg")},
         "peak_base_displacement": float(np.abs(base).max()),
         "peak_wall_displacement": float(np.abs(walls).max()) if nw else 0.0,
         "peak_indentation": float(max(0.0, indent.max())) if nw else 0.0,
-        "peak_impulse": max((r["impulse"] for r in impacts), default=0.0),
+        "peak_impulse": hits["peak_impulse"],
         "peak_drift": [float(d) for d in np.abs(drifts).max(axis=0)],
         "peak_floor_acceleration": [float(a) for a in np.abs(absacc[:, 1:]).max(axis=0) / G],
         "peak_base_acceleration": float(np.abs(absacc[:, 0]).max() / G),
