@@ -1,7 +1,7 @@
 """The building solver's kernels compiled ahead of time, so a new process starts without numba.
 
 numba's on-disk cache saves compiling, but not numba itself: importing it and initialising its
-CPU target costs each process more than many paper runs (measured in ``benchmarks/README.md``). After
+CPU target costs each process more than many paper runs (``benchmarks/README.md``). After
 the first run, :func:`build` compiles the solver's entry points with ``numba.pycc`` into a
 plain CPython extension module kept in femoat's cache folder; later processes load it
 (:func:`load`, a few milliseconds) and never import numba. Results are bit-identical to the

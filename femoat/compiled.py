@@ -23,7 +23,8 @@ EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
 """The functions the building solver calls from Python (:mod:`femoat.integration.solve`)."""
 
 _ROOT = Path(__file__).resolve().parent
-_SOURCES = ("jit.py", "contact", "integration/kernel.py", "integration/bundles.py", "structure/materials")
+_SOURCES = ("jit.py", "contact", "integration/kernel.py", "integration/bundles.py",
+            "structure/materials")
 _loaded = {}
 
 

@@ -7,8 +7,9 @@ their elastic part without knowing the law.
 The trapezoidal rule (Newmark average acceleration) conserves the energy of a linear spring
 exactly, but not of the hardening Hertz spring: over a step it does the work ½(f₀ + f₁)·Δδ instead
 of ΔΦ, Φ = 0.4·k_h·δ^2.5, and over many impacts of a lossless (e = 1) law the difference
-accumulates into an energy gain (5 % after 60 impacts at rtol = 1e-4, measured). In the time-stepping loops the
-elastic part therefore uses the discrete gradient: the end-of-step force f̃₁ is chosen so that
+accumulates into an energy gain (5 % after 60 impacts at rtol = 1e-4, measured). In the
+time-stepping loops the elastic part therefore uses the discrete gradient: the end-of-step force
+f̃₁ is chosen so that
 ½(f̃₀ + f̃₁)·Δδ = ΔΦ exactly, f̃₁ = 2·ΔΦ/Δδ − f̃₀, with f̃₀ the value the previous step ended with
 (``h[H_F_LAST]``); f̃ differs from k_h·δ^1.5 by the trapezoidal defect, O(Δδ²·f''), alternating
 in sign. The damping part of the law is unchanged. The single-impact solvers (ODE solvers, not
