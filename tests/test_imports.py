@@ -29,7 +29,7 @@ LAYERS = [
     # 6 figures and renderings (never imported by layers 0-5)
     ("femoat.plotting", "femoat.render", "femoat.walls.fe.render"),
     # 7 studies and scenarios
-    ("femoat.paper", "femoat.scenario", "femoat.suite"),
+    ("femoat.paper", "femoat.scenario", "femoat.suite", "femoat.report"),
     # 8 the command line
     ("femoat.commands", "femoat.cli"),
 ]
