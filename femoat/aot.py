@@ -1,7 +1,7 @@
 """The building solver's kernels compiled ahead of time, so a new process starts without numba.
 
 numba's on-disk cache saves compiling, but not numba itself: importing it and initialising its
-CPU target takes about 1.2 s per process on a 2-core machine, thirty paper runs' worth. After
+CPU target costs each process more than many paper runs (``benchmarks/README.md``). After
 the first run, :func:`build` compiles the solver's entry points with ``numba.pycc`` into a
 plain CPython extension module kept in femoat's cache folder; later processes load it
 (:func:`load`, a few milliseconds) and never import numba. Results are bit-identical to the
@@ -9,8 +9,8 @@ JIT kernels (the same LLVM code).
 
 * The module is keyed by a hash of every kernel source file, the Python and numba versions and
   the platform, so an edit or an upgrade makes femoat use the JIT again until it is rebuilt.
-* ``femoat paper`` and ``femoat run`` build it once at the end of a run when it is missing (about
-  25 s; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
+* ``femoat paper`` and ``femoat run`` build it once at the end of a run when it is missing (tens
+  of seconds; ``femoat compile`` does it on its own). It needs setuptools and a C compiler; without
   them femoat keeps using the JIT.
 * ``FEMOAT_AOT=0`` switches it off (load nothing, build nothing); the cache folder is
   ``$FEMOAT_CACHE`` or ``~/.cache/femoat`` (``FEMOAT_CACHE=off`` also switches it off).
@@ -18,89 +18,25 @@ JIT kernels (the same LLVM code).
   is within a few per cent of host-tuned code on this solver.
 """
 
-import functools
-import hashlib
-import importlib.machinery
-import importlib.util
 import os
-import platform
 import shutil
-import sys
 import tempfile
-from importlib import metadata
 from pathlib import Path
 
+from femoat import compiled
+from femoat.compiled import (  # noqa: F401  (the module's public face, kept here)
+    _SOURCES,
+    EXPORTS,
+    MODULE,
+    _key,
+    enabled,
+    load,
+    module_path,
+)
 from femoat.jit import OPTIONS
 
-MODULE = "femoat_aot_kernels"
-EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
-           "material_recoverable_energy", "contact_stored_energy")
-"""The functions the building solver calls from Python (:mod:`femoat.integration.solve`)."""
-
-_ROOT = Path(__file__).resolve().parent
-_SOURCES = ("jit.py", "contact/kernels.py", "integration/kernel.py", "structure/materials")
-_loaded = {}
 _NEEDS = ("this needs a C compiler (cc/gcc; Debian/Ubuntu: apt-get install gcc) and setuptools "
           "(pip install setuptools). femoat keeps using numba's JIT.")
-
-
-def enabled():
-    """False when ``FEMOAT_AOT=0`` or ``FEMOAT_CACHE=off``."""
-    return os.environ.get("FEMOAT_AOT", "1") != "0" and os.environ.get("FEMOAT_CACHE") != "off"
-
-
-def module_path():
-    """Where the compiled module for these sources, this Python and this numba lives."""
-    root = os.environ.get("FEMOAT_CACHE")
-    base = Path(root) if root else (Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
-                                    / "femoat")
-    suffix = importlib.machinery.EXTENSION_SUFFIXES[0]
-    return base / "aot" / f"{MODULE}-{_key(_ROOT)}{suffix}"
-
-
-@functools.lru_cache(maxsize=4)
-def _key(root):
-    """Hash of the kernel sources, Python, numba and platform (once per process and root)."""
-    h = hashlib.sha256()
-    for entry in _SOURCES:
-        p = root / entry
-        for f in sorted(p.glob("*.py")) if p.is_dir() else [p]:
-            h.update(f.relative_to(root).as_posix().encode())
-            h.update(f.read_bytes())
-    versions = []
-    for package in ("numba", "numpy"):  # the module links numba's runtime and numpy's C API
-        try:
-            versions.append(f"{package} {metadata.version(package)}")
-        except metadata.PackageNotFoundError:
-            versions.append(f"{package} none")
-    h.update(f"{sys.implementation.cache_tag} {versions} {sys.platform} "
-             f"{platform.machine()} {sorted(OPTIONS.items())}".encode())
-    return h.hexdigest()[:16]
-
-
-def load():
-    """The compiled module, or None (not built for these sources, switched off, or unloadable)."""
-    if not enabled():
-        return None
-    try:
-        path = module_path()
-    except Exception:  # e.g. an install without the kernel sources: nothing to key on
-        return None
-    if path in _loaded:
-        return _loaded[path]
-    module = None
-    if path.is_file():
-        try:
-            loader = importlib.machinery.ExtensionFileLoader(MODULE, str(path))
-            spec = importlib.util.spec_from_file_location(MODULE, path, loader=loader)
-            module = importlib.util.module_from_spec(spec)
-            loader.exec_module(module)
-            if not all(hasattr(module, name) for name in EXPORTS):
-                module = None
-        except Exception:
-            module = None  # built for another interpreter or damaged: the JIT is used
-    _loaded[path] = module
-    return module
 
 
 def build(force=False):
@@ -139,7 +75,7 @@ def build(force=False):
         os.replace(work / path.name, path)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    _loaded.pop(path, None)
+    compiled._loaded.pop(path, None)
     return path
 
 
@@ -165,20 +101,15 @@ def _signatures():
 
     from femoat.contact import kernels as contact
     from femoat.integration import kernel as kn
-    from femoat.run import run
+    from femoat.integration.probe import run_probe
     from femoat.structure import materials
 
     entry = {"run_chunk": kn.run_chunk, "ground_accel": kn.ground_accel,
-             "internal_force": kn._internal_force, "material_commit": materials.material_commit,
+             "internal_force": kn.internal_force, "material_commit": materials.material_commit,
              "material_recoverable_energy": materials.material_recoverable_energy,
              "contact_stored_energy": contact.contact_stored_energy}
     if not kn.run_chunk.dispatcher.signatures:
-        from femoat.ground_motions import GroundMotion
-        from femoat.paper import paper_model
-
-        t = np.arange(0.0, 0.2, 0.01)
-        quake = GroundMotion(np.sin(2 * np.pi * t), 0.01, name="aot signature probe")
-        run(paper_model("concrete", "H"), quake, extra_time=0.0, backend="jit")
+        run_probe(backend="jit")
     out = {}
     for name, kernel in entry.items():
         d = kernel.dispatcher

@@ -86,3 +86,24 @@ def _roots_in_unit_interval(a, b, c):
     for r in (r1, r2):
         out.append(np.where((r > 0.0) & (r < 1.0), r, np.nan))
     return out
+
+
+def parabolic_peak(t, f, k):
+    """Peak of f near sample k refined by the parabola through its neighbours (an impact's peak
+    force between recorded samples)."""
+    if k <= 0 or k >= f.size - 1:
+        return f[k]
+    t0, t1, t2 = t[k - 1], t[k], t[k + 1]
+    f0, f1, f2 = f[k - 1], f[k], f[k + 1]
+    if f0 <= 0.0 or f2 <= 0.0:
+        return f1
+    # vertex of the interpolating parabola (non-uniform spacing)
+    d1, d2 = (f1 - f0) / (t1 - t0), (f2 - f1) / (t2 - t1)
+    a = (d2 - d1) / (t2 - t0)
+    if a >= 0:
+        return f1
+    b = d1 - a * (t0 + t1)
+    tv = -b / (2 * a)
+    if not (t0 <= tv <= t2):
+        return f1
+    return max(f1, f0 + (tv - t0) * (d1 + a * (tv - t1)))

@@ -1,9 +1,9 @@
 """``njit`` that imports numba only when a kernel is first compiled or called from Python.
 
-Importing numba and initialising its CPU target costs about 1.2 s per process here (numba's own
-import, its registries, and the scipy.linalg import numba makes for BLAS), more than a whole
-paper run. femoat's kernels are decorated with :func:`njit` from this module instead of
-numba's: the decorator only records the function, and numba is imported on the first call
+Importing numba and initialising its CPU target costs each process more than a whole paper run
+(numba's own import, its registries, and the scipy.linalg import numba makes for BLAS; measured
+in ``benchmarks/README.md``). femoat's kernels are decorated with :func:`njit` from this module
+instead of numba's: the decorator only records the function, and numba is imported on the first call
 from Python (or when another kernel that calls this one is compiled). A process that runs the
 building solver through the ahead-of-time compiled module (:mod:`femoat.aot`) never imports
 numba at all.
@@ -23,7 +23,7 @@ _checked = set()
 OPTIONS = {"_nrt": False}
 """Compile options for every kernel. No kernel allocates, so numba's reference-counted runtime
 is switched off: with it, every array passed between kernels (and every row view ``P[e]``)
-costs an atomic increment and decrement, which was half of the solver's run time."""
+costs an atomic increment and decrement, a large share of the solver's run time."""
 
 
 def njit(*args, **options):
@@ -54,6 +54,12 @@ class Kernel:
 
             self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
         return self._dispatcher
+
+    @property
+    def targetoptions(self):
+        """numba's compile options of this kernel: numba's inliner reads them (and ``py_func``)
+        from a callee, so ``njit(inline="always")`` works between femoat kernels too."""
+        return self.dispatcher.targetoptions
 
     def __call__(self, *args):
         return self.dispatcher(*args)

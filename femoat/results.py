@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from femoat.atomic import atomic_path
-from femoat.dense_peaks import hermite_abs_max, linear_accel_velocity_abs_max
+from femoat.dense_peaks import hermite_abs_max, linear_accel_velocity_abs_max, parabolic_peak
 from femoat.units import G
 
 ARRAY_UNITS = {
@@ -165,7 +165,7 @@ class RunResult:
                     start=float(t[s]),
                     duration=float(t[last] - t[s]),
                     approach_velocity=float(self.indentation_rate[s, c]),
-                    peak_force=float(_parabolic_peak(t, f, k)),
+                    peak_force=float(parabolic_peak(t, f, k)),
                     max_indentation=float(self.indentation[seg, c].max()),
                     impulse=float(np.trapezoid(fs, t[seg])),
                 ))
@@ -203,14 +203,10 @@ class RunResult:
         wall_v = self.wall_velocity() if has_v else None
         peak_drift = self._continuous_peaks(drift, drift_v)
         peak_wall = self._continuous_peaks(wall, wall_v)
+        hits = impact_summary(imp)
         out = {
-            "peak_impact_force": max((r["peak_force"] for r in imp), default=0.0),
-            "peak_impact_force_pos": max((r["peak_force"] for r in imp if r["side"] == "pos"),
-                                         default=0.0),
-            "peak_impact_force_neg": max((r["peak_force"] for r in imp if r["side"] == "neg"),
-                                         default=0.0),
-            "impacts_pos": sum(r["side"] == "pos" for r in imp),
-            "impacts_neg": sum(r["side"] == "neg" for r in imp),
+            **{k: hits[k] for k in ("peak_impact_force", "peak_impact_force_pos",
+                                    "peak_impact_force_neg", "impacts_pos", "impacts_neg")},
             "peak_base_displacement": self._continuous_peaks(
                 self.displacement[:, :1], None if vel is None else vel[:, :1])[0],
             "peak_base_velocity": (linear_accel_velocity_abs_max(
@@ -220,7 +216,7 @@ class RunResult:
             **{f"peak_wall_displacement_{name}": peak_wall[c]
                for c, name in enumerate(self.meta["contact_names"])},
             "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
-            "peak_impulse": max((r["impulse"] for r in imp), default=0.0),
+            "peak_impulse": hits["peak_impulse"],
             "peak_drift": peak_drift,
             "peak_drift_ratio": [x / h for x, h in
                                  zip(peak_drift, self.meta.get("story_heights", []))],
@@ -280,21 +276,18 @@ class RunResult:
         return cls(**arrays, meta=meta)
 
 
-def _parabolic_peak(t, f, k):
-    """Peak of f near sample k refined by the parabola through its neighbours."""
-    if k <= 0 or k >= f.size - 1:
-        return f[k]
-    t0, t1, t2 = t[k - 1], t[k], t[k + 1]
-    f0, f1, f2 = f[k - 1], f[k], f[k + 1]
-    if f0 <= 0.0 or f2 <= 0.0:
-        return f1
-    # vertex of the interpolating parabola (non-uniform spacing)
-    d1, d2 = (f1 - f0) / (t1 - t0), (f2 - f1) / (t2 - t1)
-    a = (d2 - d1) / (t2 - t0)
-    if a >= 0:
-        return f1
-    b = d1 - a * (t0 + t1)
-    tv = -b / (2 * a)
-    if not (t0 <= tv <= t2):
-        return f1
-    return max(f1, f0 + (tv - t0) * (d1 + a * (tv - t1)))
+
+def impact_summary(impacts):
+    """The impact entries of the peak summary from an impact table (dicts with ``side``,
+    ``peak_force`` [kip], ``impulse`` [kip·s]): the largest force overall and per side, the
+    number of impacts per side, the largest impulse. Shared with the OpenSees twin."""
+    return {
+        "peak_impact_force": max((r["peak_force"] for r in impacts), default=0.0),
+        "peak_impact_force_pos": max((r["peak_force"] for r in impacts if r["side"] == "pos"),
+                                     default=0.0),
+        "peak_impact_force_neg": max((r["peak_force"] for r in impacts if r["side"] == "neg"),
+                                     default=0.0),
+        "impacts_pos": sum(r["side"] == "pos" for r in impacts),
+        "impacts_neg": sum(r["side"] == "neg" for r in impacts),
+        "peak_impulse": max((r["impulse"] for r in impacts), default=0.0),
+    }

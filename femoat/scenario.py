@@ -295,7 +295,8 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
     law : ContactLaw  the contact law (its stiffness sets the contact time t_c)
     damping_ratio : float  ξ [-] of every mode unless the table gives ``damping_ratio``
     """
-    from femoat.walls.fe import beam_model, load_geometry, modal_analysis, plane_model, solid_model
+    from femoat.walls.fe import load_geometry
+    from femoat.walls.kinds import KINDS, build_model, kind_of_mesh
     from femoat.walls.fe.mesh_io import read_mesh
     from femoat.walls.modal import ModalWall, contact_time
 
@@ -306,25 +307,23 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
         raise ValueError("[walls.fe] needs geometry = 'wall.toml' (material, size, fixity, "
                          "impact height; see femoat wall --help).")
     geometry = load_geometry(_resolve(_text(d, "geometry", "wall.toml", where), base_dir))
-    builders = {"beam": beam_model, "plane": plane_model, "solid": solid_model}
     mesh = None
     kind = _text(d, "model", "beam", where)
     if "mesh" in d:
         mesh = read_mesh(_resolve(_text(d, "mesh", "wall.vtu", where), base_dir))
-        dims = {1: "beam", 2: "plane", 3: "solid"}
-        if "model" in d and dims[mesh.dim()] != kind:
+        if "model" in d and kind_of_mesh(mesh) != kind:
             raise ValueError(f"[walls.fe] mesh is {mesh.dim()}D, which makes a "
-                             f"{dims[mesh.dim()]} model, not model = {kind!r}.")
-        kind = dims[mesh.dim()]
-    if kind not in builders:
+                             f"{kind_of_mesh(mesh)} model, not model = {kind!r}.")
+        kind = kind_of_mesh(mesh)
+    if kind not in KINDS:
         raise ValueError(f"[walls.fe] model = {kind!r}: use 'beam', 'plane' or 'solid'.")
     modes = _integer(d, "modes", 8, where) if "modes" in d else None
     flexibility = _number(d, "flexibility", 0.99, where)
     zeta = _number(d, "damping_ratio", damping_ratio, where)
     residual = _flag(d, "residual", True, where)
-    model = builders[kind](geometry, mesh=mesh)
-    m1 = modal_analysis(model, 1).M1
-    t_c = contact_time(law, base_mass, m1)
+    model = build_model(kind, geometry, mesh=mesh)
+    # the contact time from the wall's own M1: one modal analysis per wall
+    t_c = lambda result: contact_time(law, base_mass, result.M1)  # noqa: E731
     return ModalWall.from_fe(model, n_modes=modes, contact_duration=t_c,
                              flexibility_target=flexibility, damping_ratio=zeta,
                              residual=residual)

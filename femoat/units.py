@@ -13,17 +13,3 @@ def weight_to_mass(weight):
     """Mass [kip·s²/in] of a weight [kip]."""
     return weight / G
 
-
-def mass_to_weight(mass):
-    """Weight [kip] of a mass [kip·s²/in]."""
-    return mass * G
-
-
-def accel_to_g(accel):
-    """Acceleration [in/s²] expressed in g."""
-    return accel / G
-
-
-def g_to_accel(accel_g):
-    """Acceleration [g] expressed in in/s²."""
-    return accel_g * G

@@ -25,15 +25,11 @@ def warm_up(backend="auto"):
         return 0.0
     import numpy as np
 
-    from femoat.ground_motions import GroundMotion
+    from femoat.integration.probe import run_probe
     from femoat.integration.solve import kernels
-    from femoat.paper import paper_model
-    from femoat.run import run
 
     t0 = time.process_time()
-    t = np.arange(0.0, 0.2, 0.01)  # [s] a 1 g sine: the walls are 4 in away, no contact needed
-    probe = GroundMotion(np.sin(2.0 * np.pi * t), 0.01, name="start-up probe")
-    run(paper_model("concrete", "H"), probe, extra_time=0.0, backend=backend)
+    run_probe(backend)  # the walls are 4 in away: no contact needed
     kern, used = kernels(backend)
     if used == "jit":  # called only when a run ends in contact: compile it now, not in a run
         from femoat.contact.kernels import N_HISTORY, N_PARAMS

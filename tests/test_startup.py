@@ -6,30 +6,24 @@ kernels must give exactly the JIT's results. The build runs in a temporary cache
 """
 
 import json
-import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import _python_env, run_in
 
 from femoat import aot
 from femoat.paper import paper_model, paper_motion
 from femoat.run import run
 
-ROOT = Path(__file__).resolve().parents[1]
-
 
 def _python(code, env):
-    return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
-                          timeout=900, check=False, cwd=ROOT)
+    return run_in(code, env)
 
 
 def _env(cache, aot_on=True):
-    return {**os.environ, "FEMOAT_CACHE": str(cache), "FEMOAT_AOT": "1" if aot_on else "0",
-            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    return _python_env(cache, aot_on)
 
 
 def test_importing_the_solver_does_not_import_numba(tmp_path):
@@ -41,15 +35,8 @@ def test_importing_the_solver_does_not_import_numba(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    if shutil.which("cc") is None and shutil.which("gcc") is None:
-        pytest.skip("no C compiler: numba.pycc cannot link the ahead-of-time module (Debian/"
-                    "Ubuntu: apt-get install gcc); femoat keeps using numba's JIT")
-    cache = tmp_path_factory.mktemp("cache")
-    done = _python("from femoat.cli import main; raise SystemExit(main(['compile']))",
-                   _env(cache))
-    assert done.returncode == 0, done.stderr[-3000:]
-    return cache
+def built(aot_cache):
+    return aot_cache
 
 
 def test_aot_kernels_match_the_jit_and_skip_numba(built, tmp_path):

@@ -30,7 +30,8 @@ def add_parser(sub):
 
 def run(args):
     from femoat.integration.settings import Integrator
-    from femoat.paper import format_table, run_paper_study, summary_rows, write_outputs
+    from femoat.paper import run_paper_study
+    from femoat.report import format_table, summary_rows, write_outputs
 
     runs, motion = run_paper_study(damping=args.damping, quick=args.quick,
                                    calibrate=args.calibrate, integrator=Integrator(rtol=args.rtol))

@@ -16,6 +16,8 @@ Headless machines: set VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow.
 
 from pathlib import Path
 
+from femoat.walls.kinds import KINDS
+
 
 def add_parser(sub):
     p = sub.add_parser(
@@ -32,7 +34,7 @@ def add_parser(sub):
         "wall's displacement field u = sum(psi_i q_i) at the largest contact force.")
     w.add_argument("source", type=Path,
                    help="wall geometry .toml, or a mesh (.vtu/.msh) with a geometry TOML beside it")
-    w.add_argument("--model", choices=("beam", "plane", "solid"), default=None,
+    w.add_argument("--model", choices=KINDS, default=None,
                    help="wall model (default: beam for a TOML, the mesh's dimension for a mesh)")
     w.add_argument("--geometry", type=Path, default=None,
                    help="geometry TOML for a mesh source (default: the mesh path with .toml)")
@@ -116,7 +118,6 @@ def _render_wall(args):
     from femoat.run import run as run_model
     from femoat.structure.pounding import MoatWall, PoundingModel
     from femoat.units import G
-    from femoat.walls.fe.modal import modal_analysis
     from femoat.walls.modal import ModalWall, contact_time
 
     geometry, mesh, kind = _load(args)
@@ -126,8 +127,8 @@ def _render_wall(args):
     xi = args.damping_ratio
     if xi is None:
         xi = getattr(first.wall, "damping_ratio", 0.0)
-    m1 = modal_analysis(model, 1).M1
-    t_c = contact_time(first.law, building.building.base_weight / G, m1)
+    base_mass = building.building.base_weight / G
+    t_c = lambda result: contact_time(first.law, base_mass, result.M1)  # noqa: E731
     wall = ModalWall.from_fe(model, n_modes=args.modes, flexibility_target=args.flexibility,
                              contact_duration=t_c, damping_ratio=xi,
                              residual=not args.no_residual)

@@ -21,7 +21,6 @@ def add_parser(sub):
 
 
 def run(args):
-    from femoat.plotting import paper_figures as pf
     from femoat.run import run as run_model
     from femoat.scenario import load_scenario
 
@@ -34,14 +33,13 @@ def run(args):
                        collapse=sc.collapse)
     result.meta["compile_seconds"] = startup
     result.save(out / "run.npz")
-    from femoat.paper import write_outputs
+    from femoat.report import write_outputs
 
     law = sc.model.walls[0].law.kind if sc.model.walls else "-"
     wall = sc.source.get("walls", {}).get("preset", "concrete")
+    # (the figures include global_response.png, drawn once)
     write_outputs({(wall, law): result}, sc.motion, out, "scenario",
                   figures=sc.figures and not args.no_figures)
-    if sc.figures and not args.no_figures:
-        pf.plot_global_response({(wall, law): result}, out / "global_response.png")
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:

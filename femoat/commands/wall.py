@@ -3,7 +3,9 @@
 import json
 from pathlib import Path
 
-MESH_KIND = {1: "beam", 2: "plane", 3: "solid"}
+from femoat.walls.kinds import KINDS, KIND_OF_DIMENSION
+
+MESH_KIND = KIND_OF_DIMENSION
 
 
 def add_parser(sub):
@@ -19,7 +21,7 @@ def add_parser(sub):
     p.add_argument("source", type=Path,
                    help="geometry .toml, or a mesh (.vtu/.msh with named boundaries base, "
                    "impact, back)")
-    p.add_argument("--model", choices=("beam", "plane", "solid"), default=None,
+    p.add_argument("--model", choices=KINDS, default=None,
                    help="wall model (default: beam for a TOML, the mesh's dimension for a mesh)")
     p.add_argument("--geometry", type=Path, default=None,
                    help="geometry TOML for a mesh source (default: the mesh path with .toml)")
@@ -52,13 +54,12 @@ def _load(args):
 
 
 def _build(kind, geometry, mesh, timoshenko):
-    from femoat.walls.fe import beam_model, plane_model, solid_model
+    from femoat.walls.kinds import build_model
 
     if timoshenko and kind != "beam":
         raise ValueError("--timoshenko applies to the beam model only")
-    if kind == "beam":
-        return beam_model(geometry, timoshenko=timoshenko, mesh=mesh)
-    return {"plane": plane_model, "solid": solid_model}[kind](geometry, mesh=mesh)
+    options = dict(timoshenko=timoshenko) if kind == "beam" else {}
+    return build_model(kind, geometry, mesh=mesh, **options)
 
 
 def _write_modes(model, result, path):

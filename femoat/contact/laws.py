@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from femoat.contact import kernels
+from femoat.contact.codes import H_DMAX, H_V0
 from femoat.contact.damping import (
     muthukumar_loss_factor,
     muthukumar_stiffnesses,
@@ -28,15 +29,17 @@ from femoat.contact.damping import (
     xi_jankowski,
     xi_kelvin_voigt,
 )
+from femoat.contact.hertzdamp import Hertzdamp
+from femoat.contact.jankowski import Jankowski
+from femoat.contact.kelvin_voigt import KelvinVoigt
+from femoat.contact.linear import Linear
+from femoat.contact.muthukumar import Muthukumar
 from femoat.contact.parameters import ContactParameters
 
-LAW_CODES = {
-    "E": kernels.LINEAR,
-    "V": kernels.KELVIN_VOIGT,
-    "J": kernels.JANKOWSKI,
-    "H": kernels.HERTZDAMP,
-    "M": kernels.MUTHUKUMAR,
-}
+LAWS = {"E": Linear, "V": KelvinVoigt, "J": Jankowski, "H": Hertzdamp, "M": Muthukumar}
+"""The law of each letter: a frozen dataclass of its kernel parameters (with units), in its own
+module with its compiled kernels (dispatched by :mod:`femoat.contact.kernels`)."""
+LAW_CODES = {kind: law.code for kind, law in LAWS.items()}
 LAW_NAMES = {
     "E": "linear elastic",
     "V": "Kelvin-Voigt",
@@ -134,25 +137,15 @@ class ContactLaw:
         """A copy with the damping parameter replaced (``None`` restores the closed form)."""
         return replace(self, damping=value)
 
+    def resolved(self):
+        """This law's kernel parameters (its damping resolved to numbers): a :class:`Linear`,
+        :class:`KelvinVoigt`, :class:`Jankowski`, :class:`Hertzdamp` or :class:`Muthukumar`."""
+        return LAWS[self.kind].from_law(self)
+
     def packed(self):
-        """Float array of parameters in the layout documented in :mod:`femoat.contact.kernels`."""
-        pr = self.params
-        p = np.zeros(kernels.N_PARAMS)
-        p[0] = pr.k_h
-        p[1] = pr.k_eff
-        p[8] = pr.m_eff
-        p[10] = self.v0_min
-        if self.kind == "V":
-            p[2] = self.c_eff
-            p[9] = 1.0 if self.allow_tension else 0.0
-        elif self.kind == "J":
-            p[3] = self.damping_parameter()
-        elif self.kind == "H":
-            p[4] = self.damping_parameter()
-        elif self.kind == "M":
-            p[5], p[6] = self.stiffnesses()
-            p[7] = pr.delta_y
-        return p
+        """Float array of the parameters in the layout of the law's module (see
+        :mod:`femoat.contact.kernels`)."""
+        return self.resolved().params()
 
     def force(self, d, v, v0=None, delta_max=0.0):
         """Force [kip] and tangents at indentation d [in] and rate v [in/s] (for plots and tests).
@@ -160,7 +153,8 @@ class ContactLaw:
         ``v0`` is Hertzdamp's approach velocity [in/s] (defaults to ``v``); ``delta_max`` the
         largest past indentation [in] for the bilinear law.
         """
-        h = np.array([v if v0 is None else v0, delta_max], dtype=float)
+        h = np.zeros(kernels.N_HISTORY)
+        h[H_V0], h[H_DMAX] = v if v0 is None else v0, delta_max
         return kernels.contact_force(self.code, self.packed(), h, float(d), float(v))
 
 

@@ -1,8 +1,19 @@
 """The compiled time-stepping loop: implicit Newmark / HHT-α with Newton, adaptive steps, and
 contact events located inside the step.
 
-Everything here works on plain arrays prepared by :mod:`femoat.integration.packing`; nothing is
-allocated per step. The friendly, validated API is :func:`femoat.integration.solve.solve`.
+Everything here works on plain arrays grouped by role (:mod:`femoat.integration.bundles`:
+model, state, settings, workspace, recorder) prepared by :func:`femoat.integration.solve.solve`,
+the friendly, validated API; nothing is allocated per step.
+
+:func:`run_chunk` is the driver. Each step: choose the step's end (:func:`_step_end`), solve it
+by Newton (:func:`newton_step`; on failure :func:`_after_newton_failure` shrinks the step or
+opens the contact episode the step ran into), judge its local error (:func:`local_error`, the
+controller :func:`_step_factor` with its constants ``SAFETY``, ``SHRINK_MIN``, ``GROW_MAX``,
+``ERROR_EXPONENT``), look for contact events inside it (:func:`find_events`: a crossing shortens
+the step onto it; one at the committed state opens or closes the episode there,
+:func:`_declare_event`), then accept it (:func:`accept`), choose the next step, and record
+(:func:`record`, the only kernel that knows the output channels). The helpers are inlined into
+the driver by numba (``inline="always"``): the bundles cost nothing at run time.
 
 Model (relative to the ground, n DOFs)::
 
@@ -31,15 +42,13 @@ from femoat.jit import njit
 from femoat.numba_cache import drop_stale_cache
 
 _PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [_PKG / "contact" / "kernels.py",
+drop_stale_cache(__file__, [_PKG / "integration" / "bundles.py",
+                            *sorted((_PKG / "contact").glob("*.py")),
                             *sorted((_PKG / "structure" / "materials").glob("*.py"))])
 
 from femoat.contact.kernels import (  # noqa: E402
-    HERTZDAMP,
-    JANKOWSKI,
-    KELVIN_VOIGT,
     contact_closure,
-    contact_force,
+    recorded_force,
     step_commit,
     step_force,
 )
@@ -54,12 +63,11 @@ F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCO
 N_FOPT = 11
 # Integer options (iopt)
 I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_LIMITS, I_N_STRUCT = 0, 1, 2, 3, 4
-N_IOPT = 5
 # I_LIMITS: what the limit states (collapse criteria) do
 LIMITS_OFF, LIMITS_RECORD, LIMITS_STOP = 0, 1, 2
 # Stats (stats), integer
-S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS, S_FAIL_INFO = range(7)
-N_STATS = 7
+S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS = range(6)
+N_STATS = 6
 # Energies (energy), float
 E_INPUT, E_VISCOUS = 0, 1
 N_ENERGY = 2
@@ -115,18 +123,23 @@ def _solve_dense(A, b, n):
     return True
 
 
-@njit(cache=True)
-def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
-                    c_B, c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, F, KT, CT, want_tangent,
-                    nd):
+
+@njit(cache=True, inline="always")
+def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, KT, CT,
+                    want_tangent, nd):
     """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked.
 
-    Rows and columns from ``nd`` on are treated as diagonal (uncoupled wall modes while no
-    contact carries force); ``nd = n`` is the general dense case.
+    Element states ``el_S`` and contact histories ``c_H`` are the committed ones (read only); the
+    element forces and deformations, contact forces and indentations are written to ``el_f``,
+    ``el_d``, ``c_f``, ``c_d``. Rows and columns from ``nd`` on are treated as diagonal
+    (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
     Contacts act only while their episode is open (between a located closure and the located
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
     at closure), so that the step after a located closure starts from the right force.
     """
+    M, C, K = model.M, model.C, model.K
+    el_i, el_j, el_code, el_P = model.el_i, model.el_j, model.el_code, model.el_P
+    c_B, c_gap, c_code, c_P = model.c_B, model.c_gap, model.c_code, model.c_P
     n = u.size
     for i in range(nd):
         s = 0.0
@@ -176,10 +189,7 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
             # located closure; a gap that has just opened within gap_tol carries nothing)
             c_f[c] = 0.0
             continue
-        dk = d
-        if d <= 0.0 and c_code[c] == KELVIN_VOIGT:
-            dk = 1e-300
-        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], dk, dv)
+        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], d, dv)
         c_f[c] = f
         if f != 0.0 or kf != 0.0 or cf != 0.0:
             for i in range(n):
@@ -193,16 +203,28 @@ def _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, el_f, el_d,
 
 
 @njit(cache=True)
-def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B, c_gap,
-             c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A, w_b):
+def internal_force(model, state, work):
+    """The state's forces at its own (u, v), without tangents (the initial equilibrium): element
+    and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
+    _internal_force(state.u, state.v, model, state.el_S, state.c_H, state.c_closed, state.el_f,
+                    state.el_d, state.c_f, state.c_d, state.F, work.KT, work.CT, False,
+                    state.u.size)
+
+
+@njit(cache=True)
+def _restart(model, state, work):
     """Re-establish equilibrium accelerations after a contact event changed the forces.
 
     A located closure or separation is a discontinuity of the force law; the trapezoidal rule
     must restart from a = M⁻¹·(p − F) at the event instead of the pre-event acceleration.
     """
+    u, v, a, Fn = state.u, state.v, state.a, state.F
+    M, r = model.M, model.r
+    w_A, w_b = work.A, work.b
+    ag_now = state.ag_now[0]
     n = u.size
-    _internal_force(u, v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed, c_B, c_gap,
-                    c_code, c_P, c_H, c_closed, c_f, c_d, Fn, w_KT, w_CT, False, n)
+    _internal_force(u, v, model, state.el_S, state.c_H, state.c_closed, work.ef, work.ed,
+                    state.c_f, state.c_d, Fn, work.KT, work.CT, False, n)
     for i in range(n):
         w_b[i] = -r[i] * ag_now - Fn[i]
         for j in range(n):
@@ -210,6 +232,39 @@ def _restart(u, v, a, Fn, ag_now, M, C, K, r, el_i, el_j, el_code, el_P, el_S, c
     _solve_dense(w_A, w_b, n)
     for i in range(n):
         a[i] = w_b[i]
+
+
+@njit(cache=True, inline="always")
+def _rate(c_B, c, v):
+    """δ̇ [in/s] of contact ``c`` at velocities ``v``."""
+    dd = 0.0
+    for i in range(v.size):
+        dd += c_B[c, i] * v[i]
+    return dd
+
+
+@njit(cache=True, inline="always")
+def _open_episode(c, v_close, state):
+    """Open contact ``c``'s episode (gap closure at approach velocity ``v_close`` [in/s])."""
+    state.c_closed[c] = 1
+    contact_closure(state.c_H[c], v_close)
+    state.stats[S_EVENTS] += 1
+
+
+@njit(cache=True, inline="always")
+def _close_episode(c, state):
+    """End contact ``c``'s episode (the located separation)."""
+    state.c_closed[c] = 0
+    state.stats[S_EVENTS] += 1
+
+
+@njit(cache=True, inline="always")
+def _mark_last_sample(c, t, state, rec):
+    """An episode opened or closed at the committed state: if that state (time ``t``) is the
+    last recorded sample, record the contact's new flag there."""
+    k = state.stats[S_NOUT]
+    if k > 0 and rec.t[k - 1] == t:
+        rec.closed[k - 1, c] = state.c_closed[c]
 
 
 @njit(cache=True)
@@ -289,271 +344,471 @@ def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
     return hit
 
 
-@njit(cache=True)
-def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
-              M, C, K, r, ag,
-              el_i, el_j, el_code, el_P, el_S, el_f, el_d, el_W,
-              c_B, c_gap, c_code, c_P, c_H, c_f, c_d, c_W, c_closed,
-              scale_open, scale_contact, err_ref, fopt, iopt,
-              energy, stats, limits, first_exceed,
-              out_t, out_u, out_v, out_a, out_ag, out_ef, out_ed, out_cf, out_cd, out_cv,
-              out_closed,
-              w_u, w_v, w_a, w_F, w_KT, w_CT, w_A, w_b, w_ef, w_ed, w_cf, w_cd):
-    """Advance from state_t[0] to min(t_stop, t_end); return a status code (see module)."""
-    n = u.size
+# ---- the step controller ------------------------------------------------------------------
+
+SAFETY = 0.9
+"""Fraction of the step the error estimate allows that the controller takes."""
+SHRINK_MIN = 0.2
+"""Smallest factor a step is multiplied by (after a rejection or a rough step)."""
+GROW_MAX = 2.0
+"""Largest factor a step grows by after an accepted one."""
+ERROR_EXPONENT = -1.0 / 3.0
+"""h ∝ err^(−1/3): the Zienkiewicz-Xie estimate is O(h³)."""
+
+
+@njit(cache=True, inline="always")
+def _step_factor(err):
+    """Factor of the next step from a local error ``err`` (1 = at the tolerance)."""
+    return max(SHRINK_MIN, SAFETY * err ** ERROR_EXPONENT)
+
+
+@njit(cache=True, inline="always")
+def _step_end(t, h, t_goal, shortened, fopt, n_samples):
+    """(hh, t1): the step from ``t`` of at most ``h``, never crossing a record sample nor the
+    goal, landing exactly on the goal or a sample when within round-off of it (not after an
+    event shortening, which the snap would undo)."""
+    hmax, dt_rec = fopt[F_HMAX], fopt[F_DTREC]
+    k_next = int(np.floor(t / dt_rec + 1e-9)) + 1
+    hh = min(h, hmax, t_goal - t)
+    if k_next <= n_samples - 1:
+        t_sample = k_next * dt_rec
+        if t_sample - t < hh:
+            hh = t_sample - t
+    t1 = t + hh
+    if not shortened and t_goal - t1 < 1e-9 * hh:
+        t1 = t_goal
+    elif not shortened and k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-9 * hh:
+        t1 = k_next * dt_rec
+    return t1 - t, t1
+
+
+@njit(cache=True, inline="always")
+def local_error(hh, any_closed, state, settings, work):
+    """The largest scaled Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa|/(rtol·scale) of the
+    step (1 = at the tolerance), each DOF measured in its own coordinate: a story's drift
+    against its floor below (``err_ref``)."""
+    fopt = settings.fopt
+    err_coef = abs(fopt[F_BETA] - 1.0 / 6.0)
+    rtol = fopt[F_RTOL]
+    scale = settings.scale_contact if any_closed else settings.scale_open
+    err_ref = settings.err_ref
+    a, w_a = state.a, work.a
+    err = 0.0
+    for i in range(a.size):
+        sc = scale[i]
+        da = w_a[i] - a[i]
+        j = err_ref[i]
+        if j >= 0:
+            da -= w_a[j] - a[j]
+        q = hh * hh * err_coef * abs(da) / (rtol * sc)
+        if q > err:
+            err = q
+    return err
+
+
+# ---- Newton on the Newmark/HHT step -----------------------------------------------------------
+# in the acceleration a₁ (the displacement form loses digits to cancellation in
+# (u₁ − u₀ − h·v₀)/(βh²) when steps are tiny)
+
+RESIDUAL_MARGIN = 1e4
+"""A residual's estimated correction, times this, must be below the tolerance to stop Newton
+without another solve (so that the state is as converged as after one more update)."""
+ACCEL_TOL_FACTOR = 1e2
+"""Acceleration corrections are judged against ntol·ACCEL_TOL_FACTOR·(max |a| + 1 in/s²)."""
+
+
+@njit(cache=True, inline="always")
+def _trial_kinematics(hh, bh2, gh, beta, gamma, state, work):
+    """Newmark's u₁, v₁ from the trial acceleration a₁ (``work.a``); returns max |a₁|."""
+    u, v, a = state.u, state.v, state.a
+    w_u, w_v, w_a = work.u, work.v, work.a
+    amax = 0.0
+    for i in range(u.size):
+        w_u[i] = u[i] + hh * v[i] + hh * hh * (0.5 - beta) * a[i] + bh2 * w_a[i]
+        w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
+        if abs(w_a[i]) > amax:
+            amax = abs(w_a[i])
+    return amax
+
+
+@njit(cache=True, inline="always")
+def _dense_size(n_coupled, any_closed, model, work):
+    """Lazy wall work: the block solved densely, the building only while no contact can act."""
+    n = work.u.size
+    nd = n
+    if n_coupled < n and not any_closed:
+        nd = n_coupled
+        c_B, c_gap = model.c_B, model.c_gap
+        for c in range(c_gap.size):
+            d = -c_gap[c]
+            for i in range(n):
+                d += c_B[c, i] * work.u[i]
+            if d > 0.0:
+                nd = n
+    return nd
+
+
+@njit(cache=True, inline="always")
+def _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work):
+    """The HHT residual (−, into ``work.b``) and iteration matrix (``work.A``) at the trial."""
+    M, r = model.M, model.r
+    Fn = state.F
+    w_a, w_F, w_KT, w_CT, w_A, w_b = work.a, work.F, work.KT, work.CT, work.A, work.b
+    for i in range(w_a.size):
+        p1 = -r[i] * ag1
+        p0 = -r[i] * ag0
+        if i < nd:
+            s = 0.0
+            for j in range(nd):
+                s += M[i, j] * w_a[j]
+            for j in range(nd):
+                w_A[i, j] = M[i, j] + (1.0 + alpha) * (gh * w_CT[i, j] + bh2 * w_KT[i, j])
+        else:
+            s = M[i, i] * w_a[i]
+            w_A[i, i] = M[i, i] + (1.0 + alpha) * (gh * w_CT[i, i] + bh2 * w_KT[i, i])
+        w_b[i] = -(s + (1.0 + alpha) * (w_F[i] - p1) - alpha * (Fn[i] - p0))
+
+
+@njit(cache=True, inline="always")
+def _residual_is_small(bh2, ntol, amax, scale, work):
+    """After a Newton update: is the correction the residual asks for (estimated from the
+    diagonal of the iteration matrix, with a margin) below the tolerance? The forces just
+    evaluated are then those of the converged state, so neither another solve nor a final
+    evaluation is needed. In a step where every spring stays on its branch the update was exact
+    (the residual is round-off), which is most steps; this saves a third of the work."""
+    w_A, w_b = work.A, work.b
+    for i in range(w_b.size):
+        if w_A[i, i] <= 0.0:  # (a softening tangent: no estimate, solve instead)
+            return False
+        est = RESIDUAL_MARGIN * abs(w_b[i]) / w_A[i, i]
+        if bh2 * est / scale[i] >= ntol or est >= ntol * ACCEL_TOL_FACTOR * (amax + 1.0):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _update(bh2, nd, scale, work):
+    """Solve for the correction and apply it to a₁; (solved and finite, |Δu|/scale, |Δa|)."""
+    w_A, w_b, w_a = work.A, work.b, work.a
+    if not _solve_dense(w_A, w_b, nd):
+        return False, 0.0, 0.0
+    n = w_a.size
+    for i in range(nd, n):
+        w_b[i] /= w_A[i, i]
+    du = 0.0
+    da = 0.0
+    finite = True
+    for i in range(n):
+        w_a[i] += w_b[i]
+        q = bh2 * abs(w_b[i]) / scale[i]
+        if q > du:
+            du = q
+        if abs(w_b[i]) > da:
+            da = abs(w_b[i])
+        if not np.isfinite(w_a[i]):
+            finite = False
+    return finite, du, da
+
+
+@njit(cache=True, inline="always")
+def newton_step(hh, ag1, any_closed, model, state, settings, work):
+    """Solve the step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its end) for a₁
+    (``work``: the trial state and its forces at convergence); True when Newton converged."""
+    fopt, iopt = settings.fopt, settings.iopt
     beta, gamma, alpha = fopt[F_BETA], fopt[F_GAMMA], fopt[F_ALPHA]
-    rtol, hmax, hmin, ntol = fopt[F_RTOL], fopt[F_HMAX], fopt[F_HMIN], fopt[F_NTOL]
-    t_end, dt_rec, h_contact, gap_tol = fopt[F_TEND], fopt[F_DTREC], fopt[F_HCONTACT], fopt[F_GAPTOL]
-    maxit, rec_every = iopt[I_MAXIT], iopt[I_RECORD_EVERY]
-    limit_mode = iopt[I_LIMITS]
-    # Lazy wall work: while no contact carries force, the wall DOFs (diagonal modal blocks) are
-    # uncoupled from the building: dense elimination on the first n_coupled DOFs only, one
-    # division per wall mode.
-    n_coupled = iopt[I_N_COUPLED]
-    # After a closure the force law is not smooth (Kelvin-Voigt jumps, Jankowski rises as
-    # δ^(1/4)): restart small and let the controller grow the step (at most ×2 per step).
-    h_start = 1e-3 * h_contact
-    nel, ncon = el_code.size, c_code.size
-    err_coef = abs(beta - 1.0 / 6.0)
-    n_samples = ag.size
-    t = state_t[0]
-    h = h_state[0]
-    since_record = 0
-    t_goal = min(t_stop, t_end)
+    ntol, maxit, n_coupled = fopt[F_NTOL], iopt[I_MAXIT], iopt[I_N_COUPLED]
+    scale = settings.scale_contact
+    bh2 = beta * hh * hh
+    gh = gamma * hh
+    ag0 = state.ag_now[0]
+    for i in range(state.a.size):
+        work.a[i] = state.a[i]
+    converged = False
+    evaluated = False
+    it = 0
+    nd = work.u.size
+    while it < maxit:
+        it += 1
+        amax = _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
+        nd = _dense_size(n_coupled, any_closed, model, work)
+        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
+                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, True, nd)
+        _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work)
+        if it > 1 and _residual_is_small(bh2, ntol, amax, scale, work):
+            converged = True
+            evaluated = True
+            break
+        finite, du, da = _update(bh2, nd, scale, work)
+        if not finite:
+            break
+        # converged: the displacement correction is below ntol·scale and the acceleration
+        # correction below ntol relative to the accelerations (or 1 in/s² absolute)
+        if du < ntol and da < ntol * ACCEL_TOL_FACTOR * (amax + 1.0):
+            converged = True
+            break
+    state.stats[S_NEWTON] += it
+    if converged and not evaluated:
+        # final kinematics and forces at the converged acceleration
+        _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
+        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
+                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, False, nd)
+    return converged
 
-    stalls = 0
-    shortened = False
-    landing = -1  # the contact whose located separation the shortened step lands on
-    while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
-        stalls += 1
-        if stalls > 100000:
-            # no step accepted after 100000 attempts: report instead of spinning
-            state_t[0] = t
-            h_state[0] = h
-            return STEP_TOO_SMALL
-        if stats[S_NOUT] >= out_t.size:
-            state_t[0] = t
-            h_state[0] = h
-            return BUFFER_FULL
-        # --- step size: never cross a record sample, never pass the goal
-        k_next = int(np.floor(t / dt_rec + 1e-9)) + 1
-        hh = min(h, hmax, t_goal - t)
-        if k_next <= n_samples - 1:
-            t_sample = k_next * dt_rec
-            if t_sample - t < hh:
-                hh = t_sample - t
-        t1 = t + hh
-        # land exactly on the goal or a sample when within round-off of it
-        # (not after an event shortening, which the snap would undo)
-        if not shortened and t_goal - t1 < 1e-9 * hh:
-            t1 = t_goal
-        elif not shortened and k_next <= n_samples - 1 and abs(t1 - k_next * dt_rec) < 1e-9 * hh:
-            t1 = k_next * dt_rec
-        hh = t1 - t
 
-        any_closed = False
-        for c in range(ncon):
-            if c_closed[c]:
-                any_closed = True
-        # --- Newton on the Newmark/HHT step, in the acceleration a₁ (the displacement form
-        # loses digits to cancellation in (u₁ − u₀ − h·v₀)/(βh²) when steps are tiny)
-        bh2 = beta * hh * hh
-        gh = gamma * hh
-        ag1 = ground_accel(ag, dt_rec, t1)
-        ag0 = pn_state[0]
-        for i in range(n):
-            w_a[i] = a[i]
-        converged = False
-        evaluated = False
-        it = 0
-        nd = n
-        while it < maxit:
-            it += 1
-            amax = 0.0
-            for i in range(n):
-                w_u[i] = u[i] + hh * v[i] + hh * hh * (0.5 - beta) * a[i] + bh2 * w_a[i]
-                w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
-                if abs(w_a[i]) > amax:
-                    amax = abs(w_a[i])
-            # lazy wall work: a dense block only over the building while no contact can act
-            nd = n
-            if n_coupled < n and not any_closed:
-                nd = n_coupled
-                for c in range(ncon):
-                    d = -c_gap[c]
-                    for i in range(n):
-                        d += c_B[c, i] * w_u[i]
-                    if d > 0.0:
-                        nd = n
-            _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
-                            c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
-                            True, nd)
-            for i in range(n):
-                p1 = -r[i] * ag1
-                p0 = -r[i] * ag0
-                if i < nd:
-                    s = 0.0
-                    for j in range(nd):
-                        s += M[i, j] * w_a[j]
-                    for j in range(nd):
-                        w_A[i, j] = M[i, j] + (1.0 + alpha) * (gh * w_CT[i, j] + bh2 * w_KT[i, j])
-                else:
-                    s = M[i, i] * w_a[i]
-                    w_A[i, i] = M[i, i] + (1.0 + alpha) * (gh * w_CT[i, i] + bh2 * w_KT[i, i])
-                w_b[i] = -(s + (1.0 + alpha) * (w_F[i] - p1) - alpha * (Fn[i] - p0))
-            if it > 1:
-                # after a Newton update, a residual whose correction (estimated from the
-                # diagonal of the iteration matrix, with a margin of 1e4 so that the state is
-                # as converged as after one more update) is below the tolerance means
-                # convergence: the forces just evaluated are those of the converged state, so
-                # neither another solve nor a final evaluation is needed. In a step where every
-                # spring stays on its branch the update was exact (the residual is round-off),
-                # which is most steps; this saves a third of the work.
-                small = True
-                for i in range(n):
-                    if w_A[i, i] <= 0.0:  # (a softening tangent: no estimate, solve instead)
-                        small = False
-                        break
-                    est = 1e4 * abs(w_b[i]) / w_A[i, i]
-                    if bh2 * est / scale_contact[i] >= ntol or est >= ntol * 1e2 * (amax + 1.0):
-                        small = False
-                        break
-                if small:
-                    converged = True
-                    evaluated = True
-                    break
-            if not _solve_dense(w_A, w_b, nd):
-                break
-            for i in range(nd, n):
-                w_b[i] /= w_A[i, i]
-            du = 0.0
-            da = 0.0
-            finite = True
-            for i in range(n):
-                w_a[i] += w_b[i]
-                q = bh2 * abs(w_b[i]) / scale_contact[i]
-                if q > du:
-                    du = q
-                if abs(w_b[i]) > da:
-                    da = abs(w_b[i])
-                if not np.isfinite(w_a[i]):
-                    finite = False
-            if not finite:
-                break
-            # converged: the displacement correction is below ntol·scale and the acceleration
-            # correction below ntol relative to the accelerations (or 1 in/s² absolute)
-            if du < ntol and da < ntol * 1e2 * (amax + 1.0):
-                converged = True
-                break
-        stats[S_NEWTON] += it
-        if converged and not evaluated:
-            # final kinematics and forces at the converged acceleration
-            for i in range(n):
-                w_u[i] = u[i] + hh * v[i] + hh * hh * (0.5 - beta) * a[i] + bh2 * w_a[i]
-                w_v[i] = v[i] + hh * (1.0 - gamma) * a[i] + gh * w_a[i]
-            _internal_force(w_u, w_v, M, C, K, el_i, el_j, el_code, el_P, el_S, w_ef, w_ed,
-                            c_B, c_gap, c_code, c_P, c_H, c_closed, w_cf, w_cd, w_F, w_KT, w_CT,
-                            False, nd)
-        if not converged:
-            stats[S_REJECT_NEWTON] += 1
-            # A gap closing inside the step can defeat Newton when the law jumps at δ = 0⁺
-            # (Kelvin-Voigt): land just before the closure, or start the episode right here.
-            started = False
-            v_close = 0.0
-            h_cross = hh
-            for c in range(ncon):
-                if not c_closed[c]:
-                    dd0 = 0.0
-                    for i in range(n):
-                        dd0 += c_B[c, i] * v[i]
-                    if dd0 <= 0.0 or c_d[c] + dd0 * hh <= 0.0:
-                        continue
-                    # the gap closes within this step (straight-line estimate)
-                    if -c_d[c] / dd0 >= hmin and c_d[c] < -gap_tol:
-                        # aim short of the crossing so that the step converges and progresses
-                        h_cross = min(h_cross, 0.9 * (-c_d[c] / dd0))
-                        continue
-                    c_closed[c] = 1
-                    contact_closure(c_H[c], dd0)
-                    if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
-                        out_closed[stats[S_NOUT] - 1, c] = 1
-                    stats[S_EVENTS] += 1
-                    started = True
-                    v_close = max(v_close, dd0)
-            if not started and h_cross < 0.999 * hh:
-                h = h_cross
+@njit(cache=True, inline="always")
+def _after_newton_failure(t, hh, model, state, settings, work, rec):
+    """A step Newton could not solve: (next step, False), or (h, True) when it cannot shrink.
+
+    A gap closing inside the step can defeat Newton when the law jumps at δ = 0⁺ (Kelvin-Voigt):
+    land just before the closure, or start the episode right here.
+    """
+    fopt = settings.fopt
+    hmin, gap_tol, h_contact = fopt[F_HMIN], fopt[F_GAPTOL], fopt[F_HCONTACT]
+    c_B, c_d, c_closed = model.c_B, state.c_d, state.c_closed
+    state.stats[S_REJECT_NEWTON] += 1
+    started = False
+    v_close = 0.0
+    h_cross = hh
+    for c in range(c_d.size):
+        if not c_closed[c]:
+            dd0 = _rate(c_B, c, state.v)
+            if dd0 <= 0.0 or c_d[c] + dd0 * hh <= 0.0:
                 continue
-            if started:
-                _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
-                         c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT,
-                         w_A, w_b)
-                h = min(hh, _first_contact_step(v_close, h_start, h_contact, gap_tol))
+            # the gap closes within this step (straight-line estimate)
+            if -c_d[c] / dd0 >= hmin and c_d[c] < -gap_tol:
+                # aim short of the crossing so that the step converges and progresses
+                h_cross = min(h_cross, 0.9 * (-c_d[c] / dd0))
                 continue
-            h = hh * 0.25
-            if h < hmin:
-                state_t[0] = t
-                h_state[0] = h
-                stats[S_FAIL_INFO] = -1
-                return NEWTON_FAILED
-            continue
+            _open_episode(c, dd0, state)
+            _mark_last_sample(c, t, state, rec)
+            started = True
+            v_close = max(v_close, dd0)
+    if not started and h_cross < 0.999 * hh:
+        return h_cross, False
+    if started:
+        _restart(model, state, work)
+        return min(hh, _first_contact_step(v_close, H_START * h_contact, h_contact, gap_tol)), \
+            False
+    h = hh * 0.25
+    return h, h < hmin
 
-        # --- local error
-        err = 0.0
-        for i in range(n):
-            sc = scale_contact[i] if any_closed else scale_open[i]
-            # measured in the DOF's own coordinate: a story's drift against its floor below
-            da = w_a[i] - a[i]
-            j = err_ref[i]
-            if j >= 0:
-                da -= w_a[j] - a[j]
-            q = hh * hh * err_coef * abs(da) / (rtol * sc)
-            if q > err:
-                err = q
-        if err > 1.0 and hh > hmin:
-            stats[S_REJECT_ERR] += 1
-            h = hh * max(0.2, 0.9 * err ** (-1.0 / 3.0))
-            if h < hmin:
-                h = hmin
-            continue
 
-        # --- contact events inside the step
-        theta = 2.0
-        c_min = -1
-        event_now = -1
-        for c in range(ncon):
-            d0, d1 = c_d[c], w_cd[c]
-            dd0 = 0.0
-            dd1 = 0.0
-            for i in range(n):
-                dd0 += c_B[c, i] * v[i]
-                dd1 += c_B[c, i] * w_v[i]
-            if not c_closed[c] and d1 > 0.0:
-                if d0 >= -gap_tol:
-                    event_now = c  # already touching at the start of the step
-                else:
-                    th = _crossing(d0, dd0, d1, dd1, hh)
-                    if th < theta:
-                        theta = th
-                        c_min = c
-            elif c_closed[c] and d1 < -gap_tol:
+# ---- contact events -----------------------------------------------------------------------
+
+H_START = 1e-3
+"""After a closure the force law is not smooth (Kelvin-Voigt jumps, Jankowski rises as
+δ^(1/4)): restart at this fraction of the contact step and let the controller grow the step."""
+
+
+@njit(cache=True, inline="always")
+def find_events(hh, model, state, settings, work):
+    """(θ, c, c_now): the earliest crossing of δ = 0 inside the trial step at fraction θ of it
+    (θ = 2: none) by contact c (a closure, or the separation of an open episode), and c_now ≥ 0
+    a contact whose gap closes in the step while it was already touching at its start."""
+    gap_tol = settings.fopt[F_GAPTOL]
+    c_B, c_closed = model.c_B, state.c_closed
+    theta = 2.0
+    c_min = -1
+    event_now = -1
+    for c in range(c_closed.size):
+        d0, d1 = state.c_d[c], work.cd[c]
+        dd0 = 0.0
+        dd1 = 0.0
+        for i in range(state.v.size):
+            dd0 += c_B[c, i] * state.v[i]
+            dd1 += c_B[c, i] * work.v[i]
+        if not c_closed[c] and d1 > 0.0:
+            if d0 >= -gap_tol:
+                event_now = c  # already touching at the start of the step
+            else:
                 th = _crossing(d0, dd0, d1, dd1, hh)
                 if th < theta:
                     theta = th
                     c_min = c
-        if event_now >= 0:
-            # closure at the current (committed) state: start the episode, redo the step small
-            dd0 = 0.0
-            for i in range(n):
-                dd0 += c_B[event_now, i] * v[i]
-            c_closed[event_now] = 1
-            contact_closure(c_H[event_now], max(dd0, 0.0))
-            if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
-                out_closed[stats[S_NOUT] - 1, event_now] = 1
-            stats[S_EVENTS] += 1
-            _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
-                     c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
-                     w_b)
-            h = min(hh, _first_contact_step(dd0, h_start, h_contact, gap_tol))
+        elif c_closed[c] and d1 < -gap_tol:
+            th = _crossing(d0, dd0, d1, dd1, hh)
+            if th < theta:
+                theta = th
+                c_min = c
+    return theta, c_min, event_now
+
+
+# ---- accepting and recording a step -----------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def accept(ag1, landing, model, state, settings, work):
+    """Commit the trial step: energies, element and contact states, episode changes (a closure
+    within gap_tol, the located separation of contact ``landing``), kinematics. Returns
+    (an episode opened or closed, the largest approach velocity of the closures)."""
+    C, r, c_B = model.C, model.r, model.c_B
+    u, v, a, Fn = state.u, state.v, state.a, state.F
+    energy = state.energy
+    gap_tol = settings.fopt[F_GAPTOL]
+    ag0 = state.ag_now[0]
+    n = u.size
+    for i in range(n):
+        du_i = work.u[i] - u[i]
+        energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
+        cv0 = 0.0
+        cv1 = 0.0
+        for j in range(n):
+            cv0 += C[i, j] * v[j]
+            cv1 += C[i, j] * work.v[j]
+        energy[E_VISCOUS] += 0.5 * (cv0 + cv1) * du_i
+    el_i, el_j = model.el_i, model.el_j
+    el_f, el_d, w_ef, w_ed = state.el_f, state.el_d, work.ef, work.ed
+    for e in range(el_f.size):
+        state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
+        i, j = el_i[e], el_j[e]
+        dv = work.v[i] - (work.v[j] if j >= 0 else 0.0)
+        material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv)
+        el_f[e] = w_ef[e]
+        el_d[e] = w_ed[e]
+    toggled = False
+    v_close = 0.0
+    c_f, c_d, w_cf, w_cd, c_closed = state.c_f, state.c_d, work.cf, work.cd, state.c_closed
+    for c in range(c_f.size):
+        state.c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
+        step_commit(model.c_code[c], model.c_P[c], state.c_H[c], w_cd[c])
+        c_f[c] = w_cf[c]
+        c_d[c] = w_cd[c]
+        dd1 = _rate(c_B, c, work.v)
+        if not c_closed[c] and w_cd[c] >= -gap_tol and w_cd[c] <= 0.0 and dd1 > 0.0:
+            _open_episode(c, dd1, state)
+            v_close = max(v_close, dd1)
+            toggled = True
+        elif c_closed[c] and landing == c and w_cd[c] <= gap_tol and dd1 < 0.0:
+            # separation only at the located crossing (the step was shortened onto it; a
+            # closed contact whose trial step ends below −gap_tol never gets here, the event
+            # search shortens the step or opens it at the committed state). A contact
+            # resting within ±gap_tol of δ = 0 stays closed (it carries no force there)
+            # instead of opening and closing at every step.
+            _close_episode(c, state)
+            toggled = True
+    for i in range(n):
+        u[i] = work.u[i]
+        v[i] = work.v[i]
+        a[i] = work.a[i]
+        Fn[i] = work.F[i]
+    state.ag_now[0] = ag1
+    return toggled, v_close
+
+
+@njit(cache=True, inline="always")
+def record(t, model, state, rec):
+    """Append the committed state at time ``t`` to the recorder (a channel whose buffer has no
+    columns was not requested: nothing is written)."""
+    u, v, a = state.u, state.v, state.a
+    k = state.stats[S_NOUT]
+    rec.t[k] = t
+    rec.ag[k] = state.ag_now[0]
+    for i in range(rec.u.shape[1]):
+        rec.u[k, i] = u[i]
+    for i in range(rec.v.shape[1]):
+        rec.v[k, i] = v[i]
+    for i in range(rec.a.shape[1]):
+        rec.a[k, i] = a[i]
+    for e in range(rec.ef.shape[1]):
+        rec.ef[k, e] = state.el_f[e]
+        rec.ed[k, e] = state.el_d[e]
+    c_f, c_d, c_closed = state.c_f, state.c_d, state.c_closed
+    for c in range(c_f.size):
+        dd1 = _rate(model.c_B, c, v)
+        # the law's force at the recorded state; the Hertz laws' step force differs
+        # from it by the discrete gradient's O(Δδ²) trapezoidal defect
+        rec.cf[k, c] = c_f[c]
+        if c_closed[c]:
+            rec.cf[k, c] = recorded_force(model.c_code[c], model.c_P[c], state.c_H[c], c_d[c],
+                                          dd1, c_f[c])
+        rec.cd[k, c] = c_d[c]
+        rec.cv[k, c] = dd1
+        rec.closed[k, c] = c_closed[c]
+    state.stats[S_NOUT] = k + 1
+
+
+@njit(cache=True, inline="always")
+def _any_closed(c_closed):
+    for c in range(c_closed.size):
+        if c_closed[c]:
+            return True
+    return False
+
+
+# ---- the driver ---------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _declare_event(c, t, hh, h, model, state, settings, work, rec):
+    """An event at the committed state (time ``t``): contact ``c``'s gap closed while it was
+    already touching, or its crossing is closer than the smallest step. Open (or close) the
+    episode there, restart, and return the step to redo (``h`` unless an episode opened)."""
+    if state.c_closed[c]:
+        _close_episode(c, state)
+    else:
+        dd0 = _rate(model.c_B, c, state.v)
+        _open_episode(c, max(dd0, 0.0), state)
+        h_contact, gap_tol = settings.fopt[F_HCONTACT], settings.fopt[F_GAPTOL]
+        h = min(hh, _first_contact_step(dd0, H_START * h_contact, h_contact, gap_tol))
+    _mark_last_sample(c, t, state, rec)
+    _restart(model, state, work)
+    return h
+
+
+@njit(cache=True, inline="always")
+def _limit_reached(t, model, state, settings):
+    """Check the limit states after an accepted step: does the run end here?"""
+    limit_mode = settings.iopt[I_LIMITS]
+    if limit_mode == LIMITS_OFF:
+        return False
+    hit = _check_limits(t, state.u, state.el_d, state.c_f, model.c_B, settings.iopt[I_N_STRUCT],
+                        settings.limits, state.first_exceed)
+    return hit == 2 or (hit == 1 and limit_mode == LIMITS_STOP)
+
+
+@njit(cache=True, inline="always")
+def _stop(status, t, h, state):
+    """Leave the loop at time ``t`` with the next step ``h`` kept for the next call."""
+    state.t[0] = t
+    state.h[0] = h
+    return status
+
+
+@njit(cache=True)
+def run_chunk(t_stop, model, state, settings, work, rec):
+    """Advance ``state`` from state.t[0] to min(t_stop, t_end), recording into ``rec``; return a
+    status code (see module)."""
+    fopt = settings.fopt
+    hmin, t_end, h_contact, gap_tol = fopt[F_HMIN], fopt[F_TEND], fopt[F_HCONTACT], fopt[F_GAPTOL]
+    rec_every = settings.iopt[I_RECORD_EVERY]
+    c_closed, stats = state.c_closed, state.stats
+    t, h = state.t[0], state.h[0]
+    t_goal = min(t_stop, t_end)
+    since_record = stalls = 0
+    shortened = False
+    landing = -1  # the contact whose located separation the shortened step lands on
+    while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
+        stalls += 1
+        if stalls > 100000:  # no step accepted after 100000 attempts: report, don't spin
+            return _stop(STEP_TOO_SMALL, t, h, state)
+        if stats[S_NOUT] >= rec.t.size:
+            return _stop(BUFFER_FULL, t, h, state)
+        hh, t1 = _step_end(t, h, t_goal, shortened, fopt, model.ag.size)
+        ag1 = ground_accel(model.ag, fopt[F_DTREC], t1)
+        any_closed = _any_closed(c_closed)
+        if not newton_step(hh, ag1, any_closed, model, state, settings, work):
+            h, failed = _after_newton_failure(t, hh, model, state, settings, work, rec)
+            if failed:
+                return _stop(NEWTON_FAILED, t, h, state)
+            continue
+        err = local_error(hh, any_closed, state, settings, work)
+        if err > 1.0 and hh > hmin:
+            stats[S_REJECT_ERR] += 1
+            h = max(hh * _step_factor(err), hmin)
+            continue
+        theta, c_min, event_now = find_events(hh, model, state, settings, work)
+        if event_now >= 0:  # closure at the committed state: start there, redo the step small
+            h = _declare_event(event_now, t, hh, h, model, state, settings, work, rec)
             continue
         if theta <= 1.0:
             # shorten by more than the time round-off, or the same step would repeat forever
@@ -563,129 +818,27 @@ def run_chunk(t_stop, state_t, h_state, u, v, a, Fn, pn_state,
                 h = h_new
                 shortened = True
                 landing = c_min if c_closed[c_min] else -1
-                continue
-            if h_new < hmin:
-                # the crossing is closer than the smallest step: the event happens at the
-                # committed state (the last recorded sample); declare it there and redo the step
-                dd0 = 0.0
-                for i in range(n):
-                    dd0 += c_B[c_min, i] * v[i]
-                if c_closed[c_min]:
-                    c_closed[c_min] = 0
-                else:
-                    c_closed[c_min] = 1
-                    contact_closure(c_H[c_min], max(dd0, 0.0))
-                    h = min(hh, _first_contact_step(dd0, h_start, h_contact, gap_tol))
-                if stats[S_NOUT] > 0 and out_t[stats[S_NOUT] - 1] == t:
-                    out_closed[stats[S_NOUT] - 1, c_min] = c_closed[c_min]
-                stats[S_EVENTS] += 1
-                _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
-                         c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
-                         w_b)
-                continue
+            else:  # the crossing is closer than the smallest step: declare it where we are
+                h = _declare_event(c_min, t, hh, h, model, state, settings, work, rec)
+            continue
 
-        # --- accept: energies, commits, contact episode changes, output
-        for i in range(n):
-            du_i = w_u[i] - u[i]
-            energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
-            cv0 = 0.0
-            cv1 = 0.0
-            for j in range(n):
-                cv0 += C[i, j] * v[j]
-                cv1 += C[i, j] * w_v[j]
-            energy[E_VISCOUS] += 0.5 * (cv0 + cv1) * du_i
-        for e in range(nel):
-            el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
-            i, j = el_i[e], el_j[e]
-            dv = w_v[i] - (w_v[j] if j >= 0 else 0.0)
-            material_commit(el_code[e], el_P[e], el_S[e], w_ed[e], dv)
-            el_f[e] = w_ef[e]
-            el_d[e] = w_ed[e]
-        toggled = False
-        v_close = 0.0
-        for c in range(ncon):
-            c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
-            step_commit(c_code[c], c_P[c], c_H[c], w_cd[c])
-            c_f[c] = w_cf[c]
-            c_d[c] = w_cd[c]
-            dd1 = 0.0
-            for i in range(n):
-                dd1 += c_B[c, i] * w_v[i]
-            if not c_closed[c] and w_cd[c] >= -gap_tol and w_cd[c] <= 0.0 and dd1 > 0.0:
-                c_closed[c] = 1
-                contact_closure(c_H[c], dd1)
-                v_close = max(v_close, dd1)
-                toggled = True
-                stats[S_EVENTS] += 1
-            elif c_closed[c] and landing == c and w_cd[c] <= gap_tol and dd1 < 0.0:
-                # separation only at the located crossing (the step was shortened onto it; a
-                # closed contact whose trial step ends below −gap_tol never gets here, the event
-                # search shortens the step or opens it at the committed state). A contact
-                # resting within ±gap_tol of δ = 0 stays closed (it carries no force there)
-                # instead of opening and closing at every step.
-                c_closed[c] = 0
-                toggled = True
-                stats[S_EVENTS] += 1
-        for i in range(n):
-            u[i] = w_u[i]
-            v[i] = w_v[i]
-            a[i] = w_a[i]
-            Fn[i] = w_F[i]
-        pn_state[0] = ag1
+        toggled, v_close = accept(ag1, landing, model, state, settings, work)
         t = t1
         stalls = 0
         shortened = False
         landing = -1
         if toggled:
-            _restart(u, v, a, Fn, pn_state[0], M, C, K, r, el_i, el_j, el_code, el_P, el_S, c_B,
-                     c_gap, c_code, c_P, c_H, c_closed, c_f, c_d, w_ef, w_ed, w_KT, w_CT, w_A,
-                     w_b)
+            _restart(model, state, work)
         stats[S_STEPS] += 1
-        # next step size
-        grow = 2.0 if err < 1e-12 else min(2.0, max(0.2, 0.9 * err ** (-1.0 / 3.0)))
-        h = hh * grow
-        now_closed = False
-        for c in range(ncon):
-            if c_closed[c]:
-                now_closed = True
+        h = hh * (GROW_MAX if err < 1e-12 else min(GROW_MAX, _step_factor(err)))
+        now_closed = _any_closed(c_closed)
         if toggled and now_closed:
-            h = min(h, _first_contact_step(v_close, h_start, h_contact, gap_tol))
-        # output
+            h = min(h, _first_contact_step(v_close, H_START * h_contact, h_contact, gap_tol))
         since_record += 1
         if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:
             since_record = 0
-            k = stats[S_NOUT]
-            out_t[k] = t
-            out_ag[k] = ag1
-            # a channel whose buffer has no columns was not requested: nothing is written
-            for i in range(out_u.shape[1]):
-                out_u[k, i] = u[i]
-            for i in range(out_v.shape[1]):
-                out_v[k, i] = v[i]
-            for i in range(out_a.shape[1]):
-                out_a[k, i] = a[i]
-            for e in range(out_ef.shape[1]):
-                out_ef[k, e] = el_f[e]
-                out_ed[k, e] = el_d[e]
-            for c in range(ncon):
-                dd1 = 0.0
-                for i in range(n):
-                    dd1 += c_B[c, i] * v[i]
-                # the law's force at the recorded state; the Hertz laws' step force differs
-                # from it by the discrete gradient's O(Δδ²) trapezoidal defect
-                out_cf[k, c] = c_f[c]
-                if c_closed[c] and (c_code[c] == JANKOWSKI or c_code[c] == HERTZDAMP):
-                    out_cf[k, c] = contact_force(c_code[c], c_P[c], c_H[c], c_d[c], dd1)[0]
-                out_cd[k, c] = c_d[c]
-                out_cv[k, c] = dd1
-                out_closed[k, c] = c_closed[c]
-            stats[S_NOUT] = k + 1
-        if limit_mode != LIMITS_OFF:
-            hit = _check_limits(t, u, el_d, c_f, c_B, iopt[I_N_STRUCT], limits, first_exceed)
-            if hit == 2 or (hit == 1 and limit_mode == LIMITS_STOP):
-                state_t[0] = t
-                h_state[0] = h
-                return LIMIT_REACHED
-    state_t[0] = t
-    h_state[0] = h
-    return DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED
+            record(t, model, state, rec)
+        if _limit_reached(t, model, state, settings):
+            return _stop(LIMIT_REACHED, t, h, state)
+    return _stop(DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED, t, h,
+                 state)

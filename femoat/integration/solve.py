@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from femoat.integration import kernel as kn
+from femoat.integration.bundles import Model, Recorder, Settings, State, Work
 from femoat.integration.settings import Integrator
 from femoat.structure.building import yield_drift
 
@@ -125,33 +126,38 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             raise ValueError(f"limits must hold 2 x {nel + 2 * ncon} positive bounds (elements, "
                              "wall displacements, contact forces; inf for none).")
         limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
-    first_exceed = np.full(limits.shape[1], -1.0)
     iopt = np.array([integ.max_newton, integ.record_every, _uncoupled_size(packed, lazy),
                      limit_mode, packed.n_struct], dtype=np.int64)
 
+    model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.r, ag=ag, el_i=packed.el_i,
+                  el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
+                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P)
     # working copies of states (the packed model stays reusable)
-    el_S, c_H = packed.el_S.copy(), packed.c_H.copy()
-    el_f, el_d, el_W = np.zeros(nel), np.zeros(nel), np.zeros(nel)
-    c_f, c_d, c_W = np.zeros(ncon), np.zeros(ncon), np.zeros(ncon)
-    c_closed = np.zeros(ncon, dtype=np.int64)
-    w = dict(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
-             CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
-             ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon))
+    state = State(t=np.zeros(1), h=np.array([fopt[kn.F_HMAX]]), ag_now=np.zeros(1), u=u, v=v,
+                  a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(), el_f=np.zeros(nel),
+                  el_d=np.zeros(nel), el_W=np.zeros(nel), c_H=packed.c_H.copy(),
+                  c_f=np.zeros(ncon), c_d=np.zeros(ncon), c_W=np.zeros(ncon),
+                  c_closed=np.zeros(ncon, dtype=np.int64), energy=np.zeros(kn.N_ENERGY),
+                  stats=np.zeros(kn.N_STATS, dtype=np.int64),
+                  first_exceed=np.full(limits.shape[1], -1.0))
+    settings = Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
+                        err_ref=err_ref, limits=limits)
+    work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
+                CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
+                ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon))
 
     # initial equilibrium: M·a0 = p0 − F(u0, v0)
     ag0 = kern.ground_accel(ag, dt_rec, 0.0)
-    Fn = np.zeros(n)
-    kern.internal_force(u, v, packed.M, packed.C, packed.K, packed.el_i, packed.el_j,
-                       packed.el_code, packed.el_P, el_S, el_f, el_d, packed.c_B, packed.c_gap,
-                       packed.c_code, packed.c_P, c_H, c_closed, c_f, c_d, Fn, w["KT"], w["CT"], False,
-                       n)
-    a = np.linalg.solve(packed.M, -packed.r * ag0 - Fn)
-    a_initial, el_f_initial, el_d_initial = a.copy(), el_f.copy(), el_d.copy()
+    state.ag_now[0] = ag0
+    kern.internal_force(model, state, work)
+    state.a[:] = np.linalg.solve(packed.M, -packed.r * ag0 - state.F)
+    a_initial, el_f_initial, el_d_initial = (state.a.copy(), state.el_f.copy(),
+                                             state.el_d.copy())
     for c in range(ncon):
-        if c_d[c] > 0:
+        if state.c_d[c] > 0:
             raise ValueError(
                 f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
-                f"{c_d[c]:.3g} in); start the base mat inside the gap.")
+                f"{state.c_d[c]:.3g} in); start the base mat inside the gap.")
 
     e_initial = _initial_energy(kern, packed, u, v)
     unknown = set(channels) - set(CHANNELS)
@@ -162,10 +168,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                   el=nel if "elements" in chan else 0, c=ncon)
     # room for every record sample plus contact steps (grown by doubling when short)
     cap = int(1.2 * duration / dt_rec / integ.record_every) + 1024
-    bufs = _buffers(cap, widths)
-    energy = np.zeros(kn.N_ENERGY)
-    stats = np.zeros(kn.N_STATS, dtype=np.int64)
-    state_t, h_state, pn_state = np.zeros(1), np.array([fopt[kn.F_HMAX]]), np.array([ag0])
+    rec = _recorder(cap, widths)
 
     cpu0 = _time.process_time()
     # with a progress display the loop returns 20 times to report; without, it runs through
@@ -174,53 +177,45 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     targets = np.linspace(0, duration, chunks + 1)[1:]
     k = 0
     while True:
-        status = kern.run_chunk(
-            targets[k], state_t, h_state, u, v, a, Fn, pn_state,
-            packed.M, packed.C, packed.K, packed.r, ag,
-            packed.el_i, packed.el_j, packed.el_code, packed.el_P, el_S, el_f, el_d, el_W,
-            packed.c_B, packed.c_gap, packed.c_code, packed.c_P, c_H, c_f, c_d, c_W, c_closed,
-            scale_open, scale_contact, err_ref, fopt, iopt, energy, stats, limits, first_exceed,
-            *[bufs[key] for key in _BUF_KEYS],
-            w["u"], w["v"], w["a"], w["F"], w["KT"], w["CT"], w["A"], w["b"], w["ef"], w["ed"],
-            w["cf"], w["cd"],
-        )
+        status = kern.run_chunk(targets[k], model, state, settings, work, rec)
         if status == kn.BUFFER_FULL:
             cap *= 2
-            bufs = _grow(bufs, cap)
+            rec = _grow(rec, cap)
             continue
         if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
-            raise SolverError(_failure_message(packed, state_t[0], u, v, c_closed, integ,
+            raise SolverError(_failure_message(packed, state.t[0], u, v, state.c_closed, integ,
                                                stalled=status == kn.STEP_TOO_SMALL))
         if progress is not None:
-            progress(state_t[0], duration)
+            progress(state.t[0], duration)
         if status in (kn.DONE, kn.LIMIT_REACHED):
             break
         k = min(k + 1, chunks - 1)
     cpu = _time.process_time() - cpu0
 
+    stats = state.stats
     m = stats[kn.S_NOUT]
     t0 = np.zeros(1)
     hist = RawHistory(
-        t=np.concatenate([t0, bufs["t"][:m]]),
-        u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), bufs["u"][:m]]),
+        t=np.concatenate([t0, rec.t[:m]]),
+        u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
         v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
-                     bufs["v"][:m]]),
-        a=np.vstack([a_initial[:widths["a"]], bufs["a"][:m]]),
-        ag=np.concatenate([[ag0], bufs["ag"][:m]]),
-        el_force=np.vstack([el_f_initial[:widths["el"]], bufs["ef"][:m]]),
-        el_deformation=np.vstack([el_d_initial[:widths["el"]], bufs["ed"][:m]]),
-        contact_force=np.vstack([np.zeros((1, ncon)), bufs["cf"][:m]]),
-        indentation=np.vstack([-packed.c_gap[None, :], bufs["cd"][:m]]),
-        indentation_rate=np.vstack([np.zeros((1, ncon)), bufs["cv"][:m]]),
-        closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), bufs["closed"][:m]]),
+                     rec.v[:m]]),
+        a=np.vstack([a_initial[:widths["a"]], rec.a[:m]]),
+        ag=np.concatenate([[ag0], rec.ag[:m]]),
+        el_force=np.vstack([el_f_initial[:widths["el"]], rec.ef[:m]]),
+        el_deformation=np.vstack([el_d_initial[:widths["el"]], rec.ed[:m]]),
+        contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
+        indentation=np.vstack([-packed.c_gap[None, :], rec.cd[:m]]),
+        indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
+        closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
         stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
                    cpu_seconds=cpu, recorded=int(m), kernels=backend,
-                   t_reached=float(state_t[0])),
-        energy=_energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy,
-                       e_initial),
-        limit_times=np.where(first_exceed >= 0.0, first_exceed, np.nan),
+                   t_reached=float(state.t[0])),
+        energy=_energy(kern, packed, u, v, state.el_S, state.el_W, state.c_H, state.c_d,
+                       state.c_W, state.c_closed, state.energy, e_initial),
+        limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
         stopped_at_limit=bool(status == kn.LIMIT_REACHED),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
@@ -274,12 +269,12 @@ def _canonical(packed):
 
 def kernels(backend="auto"):
     """(namespace of the solver's compiled entry points, "aot" or "jit") for ``backend``."""
-    from femoat import aot
+    from femoat import compiled
 
     if backend not in ("auto", "jit", "aot"):
         raise ValueError(f"backend = {backend!r}: use 'auto', 'jit' or 'aot'.")
     if backend != "jit":
-        module = aot.load()
+        module = compiled.load()
         if module is not None:
             return module, "aot"
         if backend == "aot":
@@ -296,7 +291,7 @@ def _jit_kernels():
     from femoat.structure.materials import material_commit, material_recoverable_energy
 
     return SimpleNamespace(run_chunk=kn.run_chunk, ground_accel=kn.ground_accel,
-                           internal_force=kn._internal_force, material_commit=material_commit,
+                           internal_force=kn.internal_force, material_commit=material_commit,
                            material_recoverable_energy=material_recoverable_energy,
                            contact_stored_energy=contact_stored_energy)
 
@@ -314,24 +309,30 @@ def _uncoupled_size(packed, lazy):
     return ns
 
 
-_BUF_KEYS = ("t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv", "closed")
+RECORDER_COLUMNS = {"t": None, "u": "u", "v": "v", "a": "a", "ag": None, "ef": "el", "ed": "el",
+                    "cf": "c", "cd": "c", "cv": "c", "closed": "c"}
+"""Columns of each recorder buffer (:class:`~femoat.integration.bundles.Recorder`): the key of
+its width in ``widths`` (0 when the channel is not requested), None for one value per sample."""
 
 
-def _buffers(cap, w):
-    return dict(t=np.zeros(cap), u=np.zeros((cap, w["u"])), v=np.zeros((cap, w["v"])),
-                a=np.zeros((cap, w["a"])), ag=np.zeros(cap), ef=np.zeros((cap, w["el"])),
-                ed=np.zeros((cap, w["el"])), cf=np.zeros((cap, w["c"])),
-                cd=np.zeros((cap, w["c"])), cv=np.zeros((cap, w["c"])),
-                closed=np.zeros((cap, w["c"]), dtype=np.int8))
+def _recorder(cap, widths):
+    """Empty history buffers for ``cap`` samples."""
+    bufs = []
+    for name in Recorder._fields:
+        key = RECORDER_COLUMNS[name]
+        shape = (cap,) if key is None else (cap, widths[key])
+        bufs.append(np.zeros(shape, dtype=np.int8 if name == "closed" else np.float64))
+    return Recorder(*bufs)
 
 
-def _grow(bufs, cap):
-    out = {}
-    for key, arr in bufs.items():
+def _grow(rec, cap):
+    """The buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
+    out = []
+    for arr in rec:
         new = np.zeros((cap,) + arr.shape[1:], dtype=arr.dtype)
         new[: arr.shape[0]] = arr
-        out[key] = new
-    return out
+        out.append(new)
+    return Recorder(*out)
 
 
 def _initial_energy(kern, packed, u, v):

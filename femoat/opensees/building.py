@@ -32,7 +32,7 @@ OpenSees model (written once here)
 * Analysis: Newmark average acceleration (γ = 1/2, β = 1/4), Newton, ``NormDispIncr`` test,
   fixed dt, one ``analyze(n, dt)`` call with ``-binary`` recorders of the node displacements,
   the base and floor accelerations and the contact stresses (``cpu_seconds`` is the process
-  time of that call, recorders included: about 25 % over a bare ``analyze``).
+  time of that call, recorders included; see ``benchmarks/README.md``).
 
 Differences from femoat that remain (see :mod:`femoat.opensees.single_impact` for the contact
 materials): OpenSees' ViscoelasticGap pulls in tension (femoat's V cuts it unless
@@ -319,7 +319,8 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw):
 
 
 def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
-    from femoat.results import _parabolic_peak
+    from femoat.dense_peaks import parabolic_peak
+    from femoat.results import impact_summary
 
     x, acc, f = hist["x"], hist["acc"], hist["f"]
     ns, nw = packed.n_struct, len(model.walls)
@@ -343,7 +344,7 @@ def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
                 t[s - 1] + dt * (-indent[s - 1, c]) / (indent[s, c] - indent[s - 1, c]))
             impacts.append(dict(
                 side=names[c], start=float(t_open), duration=float((e - s + 1) * dt),
-                peak_force=float(_parabolic_peak(t, f[:, c], k)),
+                peak_force=float(parabolic_peak(t, f[:, c], k)),
                 max_indentation=float(indent[s:e + 1, c].max()),
                 impulse=float(np.trapezoid(f[seg, c], t[seg]))))
     impacts.sort(key=lambda r: r["start"])
@@ -356,18 +357,14 @@ def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
     e_input = float(-np.sum(0.5 * (ag[:-1] + ag[1:]) * (du @ masses)))
     e_contact = [float(np.sum(0.5 * (f[1:, c] + f[:-1, c]) * np.diff(indent[:, c])))
                  for c in range(nw)]
+    hits = impact_summary(impacts)
     peaks = {
-        "peak_impact_force": max((r["peak_force"] for r in impacts), default=0.0),
-        "peak_impact_force_pos": max((r["peak_force"] for r in impacts if r["side"] == "pos"),
-                                     default=0.0),
-        "peak_impact_force_neg": max((r["peak_force"] for r in impacts if r["side"] == "neg"),
-                                     default=0.0),
-        "impacts_pos": sum(r["side"] == "pos" for r in impacts),
-        "impacts_neg": sum(r["side"] == "neg" for r in impacts),
+        **{k: hits[k] for k in ("peak_impact_force", "peak_impact_force_pos",
+                                "peak_impact_force_neg", "impacts_pos", "impacts_neg")},
         "peak_base_displacement": float(np.abs(base).max()),
         "peak_wall_displacement": float(np.abs(walls).max()) if nw else 0.0,
         "peak_indentation": float(max(0.0, indent.max())) if nw else 0.0,
-        "peak_impulse": max((r["impulse"] for r in impacts), default=0.0),
+        "peak_impulse": hits["peak_impulse"],
         "peak_drift": [float(d) for d in np.abs(drifts).max(axis=0)],
         "peak_floor_acceleration": [float(a) for a in np.abs(absacc[:, 1:]).max(axis=0) / G],
         "peak_base_acceleration": float(np.abs(absacc[:, 0]).max() / G),

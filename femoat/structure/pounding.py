@@ -12,10 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact.kernels import N_HISTORY
+from femoat.contact.kernels import N_HISTORY, N_PARAMS
 from femoat.contact.laws import ContactLaw
 from femoat.structure.building import Building, initial_stiffness
 from femoat.units import G
+from femoat.walls.modal import ModalWall
 from femoat.walls.sdof import SdofWall
 
 
@@ -23,8 +24,7 @@ def wall_modes(wall):
     """(masses [kip·s²/in], stiffnesses [kip/in], dampings [kip·s/in], φ at impact [-],
     ground participation L_i = φ_iᵀ·M·ι [kip·s²/in]) of a wall's modes."""
     if isinstance(wall, SdofWall):
-        one = np.ones(1)
-        return one * wall.mass, one * wall.stiffness, one * wall.damping, one, one * wall.mass
+        wall = ModalWall.from_sdof(wall)  # the paper's wall is a one-mode modal wall
     try:
         return (np.asarray(wall.modal_masses, float), np.asarray(wall.modal_stiffnesses, float),
                 np.asarray(wall.modal_dampings, float), np.asarray(wall.impact_shape, float),
@@ -149,7 +149,7 @@ class PoundingModel:
             c_B=np.array([c[0] for c in contacts]).reshape(len(contacts), n),
             c_gap=np.array([c[1].gap for c in contacts], dtype=float),
             c_code=np.array([c[1].law.code for c in contacts], dtype=np.int64),
-            c_P=_stack([c[1].law.packed() for c in contacts], width=11),
+            c_P=_stack([c[1].law.packed() for c in contacts], width=N_PARAMS),
             c_H=np.zeros((len(contacts), N_HISTORY)),
             c_names=["pos" if c[1].side > 0 else "neg" for c in contacts],
             walls=self.walls,

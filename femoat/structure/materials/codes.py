@@ -8,10 +8,3 @@ ELASTIC = 0
 BILINEAR = 1
 IMK = 2
 FRICTION_PENDULUM = 3
-
-NAMES = {
-    ELASTIC: "elastic",
-    BILINEAR: "bilinear (kinematic hardening)",
-    IMK: "modified Ibarra-Medina-Krawinkler bilinear",
-    FRICTION_PENDULUM: "friction pendulum bearing",
-}

@@ -9,7 +9,7 @@ in +x: a positive impact-point displacement moves the wall toward the backfill.
 
 import math
 import tomllib
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from femoat.atomic import write_text
@@ -168,7 +168,3 @@ def load_geometry(path):
         raise ValueError(f"geometry file {path} is not valid TOML: {err}") from None
     return geometry_from_dict(data)
 
-
-def geometry_to_dict(geometry):
-    """Plain dict of a geometry (material nested), e.g. for JSON output."""
-    return asdict(geometry)

@@ -68,11 +68,6 @@ def _read_meshio(path):
         raise ValueError(f"meshio could not read {path}: {err}") from err
 
 
-def read_meshio_data(path):
-    """The raw :class:`meshio.Mesh` (point data, cell data) of a file, with the same guards."""
-    return _read_meshio(path)
-
-
 def read_mesh(path):
     """Read a wall mesh (scikit-fem Mesh with named boundaries) from .vtu, .msh, ...
 

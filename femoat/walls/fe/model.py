@@ -8,14 +8,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-KINDS = ("beam", "plane", "solid")
-
 
 @dataclass(frozen=True, eq=False)
 class WallModel:
     """An assembled wall, before supports are applied.
 
-    kind : str  "beam", "plane" or "solid"
+    kind : str  one of :data:`femoat.walls.kinds.KINDS`
     geometry : WallGeometry  the wall it was built from
     stiffness : scipy.sparse.csr_matrix  [kip/in], all DOFs (supports not yet applied)
     mass : scipy.sparse.csr_matrix  [kip·s²/in], consistent mass, all DOFs

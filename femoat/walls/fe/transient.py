@@ -43,8 +43,9 @@ import scipy.linalg
 import scipy.sparse.linalg as sla
 
 from femoat.contact import kernels
+from femoat.contact.codes import H_V0
 from femoat.contact.laws import ContactLaw
-from femoat.impact.single import ContactDidNotEndError, ImpactResult
+from femoat.contact.episode import ContactDidNotEndError, ImpactResult
 
 
 @dataclass(frozen=True)
@@ -189,18 +190,14 @@ def fe_impact(model, law, v0, mass=None, damping_ratio=0.0, damped_modes=None, r
         t_max = 200.0 * t_est + 20.0 / modal_analysis(model, 1).frequencies[0]
     n_steps_max = int(math.ceil(t_max / h))
 
-    code, p = law.code, law.packed()
+    spec = law.resolved()
+    code, p = law.code, spec.params()
     hist = np.zeros(kernels.N_HISTORY)
     kernels.contact_closure(hist, float(v0))
-    tension_free_v = law.kind == "V" and not law.allow_tension
 
     def raw(d, dd):
         # unclipped force indicator of the laws that separate by force (as in simulate_impact)
-        if tension_free_v:
-            return p[1] * d + p[2] * dd
-        if law.kind == "H":
-            return 1.0 + p[4] * dd / max(hist[0], p[10])
-        return 1.0
+        return spec.separation_indicator(d, dd, hist[H_V0])
 
     n = len(free)
     u, v, a = np.zeros(n), np.zeros(n), np.zeros(n)
@@ -244,7 +241,7 @@ def fe_impact(model, law, v0, mass=None, damping_ratio=0.0, damped_modes=None, r
             peak_f, peak_u, peak_t = f, u_new, t
         u, v, a = u_new, v_new, a_new
         x, xd, xa = x_new, xd_new, xa_new
-        kernels.contact_commit(hist, d_new)
+        kernels.contact_commit(code, hist, d_new)
         separated = d_new <= 0.0 or (f == 0.0 and raw(d_new, dd_new) <= 0.0)
         if separated:
             # locate the separation by linear interpolation of δ (or of the raw force); the

@@ -1,0 +1,94 @@
+"""Fingerprints of the 20 paper runs: the solver's exact output, to hold a refactor to bit-identity.
+
+For each wall (concrete, steel), contact law (E, V, J, H, M) and impact damping (published,
+consistent) under :func:`femoat.paper.paper_motion`, a sha256 of every recorded history's bytes
+(time, displacement, contact force, and all the other channels together), the step, rejection and
+Newton counts and the energy terms (as ``float.hex``, exact). Two sets: the full motion (as in
+the paper) and the quick one (its first 4 s, for the ahead-of-time check in a subprocess).
+
+    PYTHONPATH=. python tests/fingerprints.py            # print the current fingerprints' diff
+    PYTHONPATH=. python tests/fingerprints.py --write    # store them in data/fingerprints.json
+
+Store them only from a commit whose results are the reference (the one before a refactor).
+"""
+
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+PATH = Path(__file__).resolve().parent / "data" / "fingerprints.json"
+ARRAYS = ("time", "displacement", "velocity", "acceleration", "ground_acceleration",
+          "element_force", "element_deformation", "contact_force", "indentation",
+          "indentation_rate", "contact_closed")
+STATS = ("steps", "rejected_error", "rejected_newton", "newton_iterations", "events", "recorded")
+
+
+def _sha(*arrays):
+    h = hashlib.sha256()
+    for a in arrays:
+        a = np.ascontiguousarray(a)
+        h.update(f"{a.dtype.str}{a.shape}".encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def fingerprint(result):
+    """The exact fingerprint of a :class:`~femoat.results.RunResult`."""
+    st = result.meta["stats"]
+    return dict(
+        time=_sha(result.time), displacement=_sha(result.displacement),
+        contact_force=_sha(result.contact_force),
+        all_histories=_sha(*(getattr(result, k) for k in ARRAYS)),
+        **{k: int(st[k]) for k in STATS},
+        energy={k: float(v).hex() for k, v in sorted(result.energy.items())},
+    )
+
+
+def keys():
+    from femoat.paper import LAWS, WALLS
+
+    return [(w, law, d) for d in ("published", "consistent") for w in WALLS for law in LAWS]
+
+
+def compute(quick, backend="jit", only=None):
+    """{"wall/law/damping": fingerprint} of the paper runs (all 20, or the keys in ``only``)."""
+    from femoat.paper import paper_model, paper_motion
+    from femoat.run import run
+
+    motion = paper_motion(quick=quick)
+    out = {}
+    for wall, law, damping in keys():
+        name = f"{wall}/{law}/{damping}"
+        if only is not None and name not in only:
+            continue
+        r = run(paper_model(wall, law, damping), motion, extra_time=1.0 if quick else 2.0,
+                backend=backend)
+        out[name] = fingerprint(r)
+    return out
+
+
+def load():
+    return json.loads(PATH.read_text())
+
+
+def main(argv):
+    current = {"full": compute(False), "quick": compute(True)}
+    if "--write" in argv:
+        PATH.write_text(json.dumps(current, indent=1, sort_keys=True) + "\n")
+        print(f"wrote {PATH}")
+        return 0
+    stored = load()
+    bad = [(s, k) for s in current for k in current[s] if current[s][k] != stored[s].get(k)]
+    for s, k in bad:
+        print(f"{s} {k}: differs", {f: (stored[s][k][f], current[s][k][f])
+                                    for f in current[s][k] if stored[s][k][f] != current[s][k][f]})
+    print("bit-identical" if not bad else f"{len(bad)} runs differ")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    raise SystemExit(main(sys.argv[1:]))
