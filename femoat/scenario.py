@@ -110,6 +110,8 @@ class Scenario:
     output_folder: Path
     figures: bool
     source: dict
+    wall_label: str = "concrete"
+    """The walls' name in reports: the preset, with "FE" for a finite-element wall."""
 
 
 # ---- typed reads: a value of the wrong type is a ValueError that names the table and the key ---
@@ -401,8 +403,10 @@ def scenario_from_dict(d, base_dir=Path(".")):
     out = _table(d, "output", "scenario")
     _check_keys(out, _KNOWN["output"], "[output]")
     collapse = collapse_from_dict(_table(d, "collapse", "scenario")) if "collapse" in d else None
+    walls_d = _table(d, "walls", "scenario")
+    label = str(walls_d.get("preset", "concrete")) + (" FE" if "fe" in walls_d else "")
     return Scenario(model=model, motion=motion, integrator=integ, extra_time=extra_time,
-                    collapse=collapse,
+                    collapse=collapse, wall_label=label,
                     output_folder=Path(_text(out, "folder", "femoat_output", "[output]")),
                     figures=_flag(out, "figures", True, "[output]"), source=d)
 

@@ -36,7 +36,7 @@ def run(args):
     from femoat.report import write_outputs
 
     law = sc.model.walls[0].law.kind if sc.model.walls else "-"
-    wall = sc.source.get("walls", {}).get("preset", "concrete")
+    wall = sc.wall_label
     # (the figures include global_response.png, drawn once)
     write_outputs({(wall, law): result}, sc.motion, out, "scenario",
                   figures=sc.figures and not args.no_figures)
