@@ -7,7 +7,21 @@ a compiled module depends on and deletes that module's cache entries when the ha
 """
 
 import hashlib
+import os
 from pathlib import Path
+
+
+def cache_dirs(module_file):
+    """The folders numba may cache ``module_file``'s functions in: its ``__pycache__`` and,
+    with ``NUMBA_CACHE_DIR`` set, numba's folder for it there (numba's own naming: the parent
+    folder's name and the SHA-1 of its absolute path)."""
+    folder = Path(module_file).resolve().parent
+    out = [folder / "__pycache__"]
+    user = os.environ.get("NUMBA_CACHE_DIR")
+    if user:
+        digest = hashlib.sha1(str(folder).encode()).hexdigest()
+        out.append(Path(user) / f"{folder.name}_{digest}")
+    return out
 
 
 def drop_stale_cache(module_file, dependencies, tag="deps"):
@@ -17,7 +31,6 @@ def drop_stale_cache(module_file, dependencies, tag="deps"):
     dependencies; femoat.jit's compile options) do not overwrite each other's stamps.
     """
     module_file = Path(module_file)
-    cache_dir = module_file.parent / "__pycache__"
     h = hashlib.sha256()
     for dep in sorted(str(d) for d in dependencies):
         try:
@@ -25,16 +38,21 @@ def drop_stale_cache(module_file, dependencies, tag="deps"):
         except OSError:
             return
     digest = h.hexdigest()
-    stamp = cache_dir / f"{module_file.stem}.{tag}-sha256"
+    for cache_dir in cache_dirs(module_file):
+        _drop_if_stale(cache_dir, module_file.stem, tag, digest)
+
+
+def _drop_if_stale(cache_dir, stem, tag, digest):
+    stamp = cache_dir / f"{stem}.{tag}-sha256"
     try:
         if stamp.read_text() == digest:
             return
     except OSError:
         pass
     try:
-        for f in cache_dir.glob(f"{module_file.stem}.*.nb[ic]"):
+        for f in cache_dir.glob(f"{stem}.*.nb[ic]"):
             f.unlink()
-        cache_dir.mkdir(exist_ok=True)
+        cache_dir.mkdir(parents=True, exist_ok=True)
         stamp.write_text(digest)
     except OSError:
         pass  # read-only install: numba falls back to compiling in memory
