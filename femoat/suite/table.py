@@ -115,7 +115,10 @@ def load_table(out, columns=None):
     # their type as pandas' nullable Int64 / boolean
     nullable = {pa.int64(): pd.Int64Dtype(), pa.bool_(): pd.BooleanDtype()}
     df = pa.concat_tables(tables, promote_options="default").to_pandas(types_mapper=nullable.get)
-    return df.drop_duplicates("run_id", keep="first").reset_index(drop=True)
+    # one order whatever order the batches finished in (a fit over the rows is then the same
+    # to the last digit on every rerun)
+    df = df.drop_duplicates("run_id", keep="first")
+    return df.sort_values("run_id", kind="stable").reset_index(drop=True)
 
 
 def stored_runs(out):
