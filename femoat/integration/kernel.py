@@ -309,6 +309,19 @@ def _crossing(d0, dd0, d1, dd1, h):
 
 
 @njit(cache=True)
+def _check_bound(x, j, t, limits, first, hit):
+    """``hit`` raised to 1 if x exceeds criterion j (its first time recorded), to 2 if it
+    exceeds runaway bound j."""
+    if x > limits[0, j]:
+        hit = max(hit, 1)
+        if first[j] < 0.0:
+            first[j] = t
+    if x > limits[1, j]:
+        hit = 2
+    return hit
+
+
+@njit(cache=True)
 def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
     """Record the first time each limit is exceeded; 1 when a limit of row 0 is exceeded now,
     2 when one of row 1 (runaway bounds: the run cannot mean anything beyond them), else 0.
@@ -321,26 +334,13 @@ def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
     nel, ncon = el_d.size, c_f.size
     hit = 0
     for e in range(nel):
-        x = abs(el_d[e])
-        if x > limits[0, e]:
-            hit = max(hit, 1)
-            if first[e] < 0.0:
-                first[e] = t
-        if x > limits[1, e]:
-            hit = 2
+        hit = _check_bound(abs(el_d[e]), e, t, limits, first, hit)
     for c in range(ncon):
         w = 0.0
         for i in range(n_struct, u.size):
             w -= c_B[c, i] * u[i]
-        for k in range(2):
-            j = nel + c + k * ncon
-            x = abs(w) if k == 0 else c_f[c]
-            if x > limits[0, j]:
-                hit = max(hit, 1)
-                if first[j] < 0.0:
-                    first[j] = t
-            if x > limits[1, j]:
-                hit = 2
+        hit = _check_bound(abs(w), nel + c, t, limits, first, hit)
+        hit = _check_bound(c_f[c], nel + ncon + c, t, limits, first, hit)
     return hit
 
 
