@@ -44,3 +44,16 @@ def test_never_collapsing_trace_ends_after_max_runs():
 def test_bad_parameters_name_themselves():
     with pytest.raises(ValueError, match="step0"):
         hunt_fill(lambda im: True, step0=-1, step_increment=0, resolution=0.1, max_runs=3)
+
+
+def test_a_collapse_found_by_the_fill_is_bracketed_again():
+    # a non-monotone IDA curve: collapse on [0.425, 0.45) and from 0.456 on ("resurrection" in
+    # between). Hunt (step0 = increment = 0.05): 0.05, 0.15, 0.30, 0.50 (collapse); the bracket
+    # then closes on 0.456; fill runs halve the gaps below 0.45 and one of them lands in
+    # [0.425, 0.45); the lowest collapse moves down and must be bracketed to the resolution
+    def collapsed(im):
+        return 0.425 <= im < 0.45 or im >= 0.456
+
+    runs = hunt_fill(collapsed, 0.05, 0.05, 0.01, 40)
+    low, high = collapse_bracket(runs)
+    assert 0.425 <= high <= 0.435 and high - low <= 0.01 and low < 0.425

@@ -225,3 +225,39 @@ def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys):
     assert main(["suite", str(_suite(tmp_path)), "--serial", "--out", str(out2),
                  "--no-report"]) == 0
     assert not (out2 / "report").exists()
+
+
+@pytest.mark.slow
+def test_headline_suite_runs_to_collapse_and_reports(tmp_path):
+    # `femoat suite` with no file: 44 far-field records x 10 variations, hunt-and-fill IDA
+    import pandas as pd
+
+    from femoat.cli import main
+    from femoat.suite.huntfill import collapse_bracket
+
+    out = tmp_path / "headline"
+    assert main(["suite", "--out", str(out)]) == 0
+    df = load_table(out)
+    assert df["variation"].nunique() == 10 and df["record"].nunique() == 44
+    assert set(df["status"]) <= {"ok", "collapsed"}
+    summary = pd.read_csv(out / "report" / "collapse_summary.csv")
+    assert len(summary) == 10
+    unresolved = 0
+    for (variation, record), trace in df.groupby(["variation", "record"]):
+        runs = list(zip(trace["im"], trace["status"] != "ok"))
+        low, high = collapse_bracket(runs)
+        # every trace collapses and brackets its lowest collapse intensity to the suite's
+        # resolution (0.01 g), unless a collapse found late (a non-monotone curve) left too few
+        # of its 20 runs to refine it
+        assert high is not None
+        assert high - low <= 0.01 + 1e-12 or len(runs) == 20
+        unresolved += high - low > 0.01 + 1e-12
+    assert unresolved <= 4  # of 440 traces (19 before a late collapse was re-bracketed)
+    # the report's empirical S_CT is the median over the records of the bracket's upper end
+    for _, row in summary.iterrows():
+        mine = df[(df["walls.law"] == row["walls.law"])
+                  & (df["walls.preset"] == row["walls.preset"])]
+        assert mine["record"].nunique() == 44
+        highs = [collapse_bracket(list(zip(t["im"], t["status"] != "ok")))[1]
+                 for _, t in mine.groupby("record")]
+        assert row["S_CT empirical [g]"] == pytest.approx(float(pd.Series(highs).median()))

@@ -7,6 +7,8 @@
    that collapsing im until their distance is at most ``resolution``.
 3. **Fill**: with the runs left, halve the largest gap between the non-collapsing ims (from 0 up to
    the highest non-collapse) until every gap is at most ``resolution`` or the runs are used up.
+   A fill run that collapses (the IDA curve is not monotone: the structure "resurrects" above
+   it) lowers the collapse intensity; step 2 then refines the new bracket before filling on.
 
 At most ``max_runs`` runs in all; a trace that never collapses ends after ``max_runs`` hunt runs.
 A run that fails to converge is handed to the oracle's caller to classify; the suite counts it as
@@ -46,15 +48,14 @@ def hunt_fill(collapsed, step0, step_increment, resolution, max_runs):
         if trial(im):
             break
         step += step_increment
-    # 2. bracket the first collapse
+    # 2. bracket the lowest collapse, 3. fill the largest gap below it; a fill run that
+    # collapses (a non-monotone IDA curve, "resurrection" above it) moves the lowest collapse
+    # down, and the bracket is refined again before any further fill
     while len(runs) < max_runs:
         low, high = _bracket(runs)
-        if high is None or high - low <= resolution:
-            break
-        trial(0.5 * (low + high))
-    # 3. fill the largest gaps below the highest non-collapse
-    while len(runs) < max_runs:
-        low, high = _bracket(runs)
+        if high is not None and high - low > resolution:
+            trial(0.5 * (low + high))
+            continue
         safe = sorted({0.0} | {im for im, c in runs if not c and im <= low})
         gaps = [(b - a, a, b) for a, b in zip(safe[:-1], safe[1:])]
         if not gaps:
