@@ -249,6 +249,11 @@ def building_from_dict(d):
                         isolator_capacity=float(capacity))
 
 
+def solver_from_dict(d):
+    """The :class:`~femoat.integration.settings.Integrator` of a ``[solver]`` table."""
+    return _numeric_table(dict(d), Integrator, "[solver]")
+
+
 def collapse_from_dict(d):
     """The :class:`~femoat.collapse.CollapseCriteria` of a ``[collapse]`` table."""
     from femoat.collapse import CollapseCriteria
@@ -398,8 +403,7 @@ def scenario_from_dict(d, base_dir=Path(".")):
     extra_time = _number(motion_d, "extra_time", 2.0, "[motion]", "s")
     if extra_time < 0.0:
         raise ValueError(f"[motion] extra_time = {extra_time!r}: expected a time >= 0 [s].")
-    solver = _table(d, "solver", "scenario")
-    integ = _numeric_table(solver, Integrator, "[solver]")
+    integ = solver_from_dict(_table(d, "solver", "scenario"))
     out = _table(d, "output", "scenario")
     _check_keys(out, _KNOWN["output"], "[output]")
     collapse = collapse_from_dict(_table(d, "collapse", "scenario")) if "collapse" in d else None
@@ -424,13 +428,21 @@ def load_scenario(path):
         table and the key).
     """
     path = Path(path)
+    return scenario_from_dict(read_toml(path, "scenario"), path.parent)
+
+
+def read_toml(path, kind):
+    """The parsed TOML document of the ``kind`` file ``path`` (e.g. "scenario", "suite").
+
+    Raises FileNotFoundError, or ValueError naming the file when it is not UTF-8 TOML.
+    """
+    path = Path(path)
     if not path.is_file():
-        raise FileNotFoundError(f"scenario file {path} does not exist.")
+        raise FileNotFoundError(f"{kind} file {path} does not exist.")
     try:
-        d = tomllib.loads(path.read_bytes().decode("utf-8"))
+        return tomllib.loads(path.read_bytes().decode("utf-8"))
     except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start}); a scenario file is TOML "
+        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start}); a {kind} file is TOML "
                          "text.") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: not valid TOML ({exc}).") from None
-    return scenario_from_dict(d, path.parent)

@@ -157,3 +157,16 @@ multipliers = [1.0, 2.0]
                                                      'sdc = "Dmax"\nanchor = "table"')))
     assert table.scaling.anchor == pytest.approx(0.9 / 0.348, rel=1e-12)
     assert table.scaling.sf1_table == suite.scaling.sf1_table == table.scaling.anchor
+
+
+def test_a_binary_or_mistyped_suite_file_names_itself(tmp_path):
+    # a suite file that is not UTF-8 text, and a [solver] value of the wrong type, are
+    # ValueErrors naming the file or the key (the scenario reader's rules), not another error
+    bad = tmp_path / "bad.toml"
+    bad.write_bytes(b"\xff\xfe[records]\n")
+    with pytest.raises(ValueError, match="bad.toml"):
+        load_suite(bad)
+    from femoat.suite.model import build_model
+
+    with pytest.raises(ValueError, match=r"\[solver\] max_newton"):
+        build_model({"solver": {"max_newton": 3.5}})

@@ -68,7 +68,6 @@ import functools
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -146,13 +145,10 @@ def code_version():
 
 def load_suite(path=None):
     """Read and validate a suite file (the headline suite when ``path`` is None)."""
+    from femoat.scenario import read_toml
+
     path = Path(path) if path is not None else HEADLINE
-    if not path.is_file():
-        raise FileNotFoundError(f"suite file {path} does not exist.")
-    try:
-        d = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({exc}).") from None
+    d = read_toml(path, "suite")
     return suite_from_dict(d, path.resolve().parent)
 
 

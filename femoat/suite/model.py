@@ -29,18 +29,15 @@ class Model:
 def build_model(tables, stop_on_collapse=True, base_dir=Path(".")):
     """A :class:`Model` from the model tables {'building', 'walls', 'solver', 'collapse'}."""
     from femoat import scenario
-    from femoat.integration.settings import Integrator
-    from femoat.scenario import _check_keys
     from femoat.structure.pounding import PoundingModel
     from femoat.units import G
 
     building = scenario.building_from_dict(tables.get("building", {}))
     walls = scenario.walls_from_dict(tables.get("walls", {}), base_dir, building.base_weight / G)
-    solver = dict(tables.get("solver", {}))
-    _check_keys(solver, scenario._KNOWN["solver"], "[solver]")
     collapse = dict(tables.get("collapse", {}))
     collapse.setdefault("stop", bool(stop_on_collapse))
-    return Model(PoundingModel(building, walls), Integrator(**solver),
+    integrator = scenario.solver_from_dict(tables.get("solver", {}))
+    return Model(PoundingModel(building, walls), integrator,
                  scenario.collapse_from_dict(collapse))
 
 
