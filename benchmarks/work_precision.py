@@ -6,8 +6,13 @@
 For each paper run (5 laws × concrete/steel wall × published/consistent C_imp) femoat runs at
 several accuracy settings (rtol) and its OpenSees twin (femoat.opensees.building) at several fixed
 time steps. Each run's error is measured against a converged reference, femoat at rtol = 1e-8,
-itself cross-checked against OpenSees at the finest step (dt = 1e-5 s), for four quantities: peak
-impact force, peak base displacement, peak wall displacement and the largest impact impulse.
+itself cross-checked against OpenSees at the finest step (dt = 1e-5 s, column "ref vs OS" of each
+table), for six quantities: peak impact force, peak base displacement, peak wall displacement, the
+largest impact impulse, the peak story drifts and the peak floor accelerations. The last two are
+one value per story (floor k atop story k), and a run's error is the worst over the stories,
+max_k |x_k − ref_k|/|ref_k| (relative to each story's own reference peak, so a small drift counts
+as much as a large one); the other errors are |x − ref|/|ref|. femoat's drifts are peaks of the
+continuous solution, its accelerations peaks at the step ends; OpenSees' both at its samples.
 
 Same problem for both tools: law V runs with ``allow_tension=True`` in both (OpenSees'
 ViscoelasticGap pulls in tension; femoat's default V does not). CPU time is ``time.process_time``
@@ -21,8 +26,11 @@ OpenSees, whose error is not monotone in dt). Outside OpenSees' range the ratio 
 femoat is more accurate than OpenSees' finest step, ≤ when OpenSees' coarsest converged step is
 already more accurate than femoat).
 
-Writes benchmarks/results/work_precision.csv (every point) and work_precision.png (CPU time
-against error, one line per tool and run), atomically; prints the summary table.
+Writes benchmarks/results/work_precision.csv (every point; the drifts and floor accelerations as
+peak_drift_k and peak_floor_acceleration_k, k = 1…3, their errors as err_drift and err_a_fl, the
+worst over the stories) and work_precision.png (CPU time against error, one line per tool and
+run), atomically (--quick: work_precision_quick.*); prints one table per quantity and, last, one
+line per quantity with the range over the runs of femoat's error at rtol 1e-4 and of the ratio.
 """
 
 import argparse
@@ -53,9 +61,14 @@ RTOLS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6)
 REF_RTOL = 1e-8
 DTS = (1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5)
 QUANTITIES = ("peak_impact_force", "peak_base_displacement", "peak_wall_displacement",
-              "peak_impulse")
+              "peak_impulse", "peak_drift", "peak_floor_acceleration")
+PER_STORY = ("peak_drift", "peak_floor_acceleration")  # lists, one value per story (floor)
+N_STORIES = len(Building().stories)
 SHORT = {"peak_impact_force": "F", "peak_base_displacement": "u_b",
-         "peak_wall_displacement": "w", "peak_impulse": "I"}
+         "peak_wall_displacement": "w", "peak_impulse": "I", "peak_drift": "drift",
+         "peak_floor_acceleration": "a_fl"}
+LABEL = {"peak_impact_force": "peak-force", "peak_drift": "worst story drift",
+         "peak_floor_acceleration": "worst floor acceleration"}
 TARGET_ERROR = 5e-3      # 0.5 % in peak impact force
 TARGET_RATIO = 30.0      # femoat at most 1/30 of OpenSees' CPU time at equal error
 TARGET_CPU = 0.050       # [s] per run after compilation
@@ -139,6 +152,22 @@ def cpu_at_error(points, err):
     return math.nan, math.nan, "?"
 
 
+def label(quantity):
+    """The quantity's name in the tables: "peak-force", "worst story drift", ..."""
+    return LABEL.get(quantity, quantity.replace("_", " "))
+
+
+def rel_error(x, ref):
+    """|x − ref|/|ref|; for a per-story quantity (lists) the worst over the stories,
+    max_k |x_k − ref_k|/|ref_k|. nan without a usable reference (missing, nan or 0)."""
+    if ref is None:
+        return math.nan
+    x, ref = np.atleast_1d(np.asarray(x, dtype=float)), np.atleast_1d(np.asarray(ref, dtype=float))
+    if x.shape != ref.shape or not np.all(np.isfinite(ref) & (ref != 0)):
+        return math.nan
+    return float(np.max(np.abs(x / ref - 1.0)))
+
+
 def run_case(wall, law, damping, motion, duration, rtols, dts, log, cached=None):
     """All points of one paper run; OpenSees points found in ``cached`` ({(run, dt): row}, from
     an earlier CSV) are reused: they do not depend on femoat's code."""
@@ -161,30 +190,57 @@ def run_case(wall, law, damping, motion, duration, rtols, dts, log, cached=None)
     finest = min((r for r in rows if r["tool"] == "opensees" and r["status"] == "ok"),
                  key=lambda r: r["setting"], default=None)
     for r in rows:
+        own = finest if r["tool"] == "opensees" else ref
         for q in QUANTITIES:
-            r[f"err_{SHORT[q]}"] = abs(r[q] / ref[q] - 1.0) if ref[q] == ref[q] != 0 else math.nan
-            own = finest if r["tool"] == "opensees" else ref
-            r[f"self_{SHORT[q]}"] = (abs(r[q] / own[q] - 1.0) if own is not None and own[q]
-                                     else math.nan)
+            r[f"err_{SHORT[q]}"] = rel_error(r[q], ref[q])
+            r[f"self_{SHORT[q]}"] = rel_error(r[q], own[q]) if own is not None else math.nan
     return rows
 
 
+def value_columns(quantity):
+    """The CSV columns of a quantity: itself, or q_1 … q_n for a per-story one."""
+    if quantity in PER_STORY:
+        return [f"{quantity}_{k}" for k in range(1, N_STORIES + 1)]
+    return [quantity]
+
+
 COLUMNS = (["run", "tool", "setting", "status", "cpu", "steps", "impacts", "energy_residual"]
-           + list(QUANTITIES) + [f"err_{SHORT[q]}" for q in QUANTITIES]
-           + [f"self_{SHORT[q]}" for q in QUANTITIES])
+           + [c for q in QUANTITIES for c in value_columns(q)]
+           + [f"err_{SHORT[q]}" for q in QUANTITIES] + [f"self_{SHORT[q]}" for q in QUANTITIES])
+
+
+def flatten(row):
+    """``row`` with each per-story list spread over its columns (nan in each for a failed
+    point, whose value is a single nan)."""
+    out = dict(row)
+    for q in PER_STORY:
+        value = out.pop(q)
+        values = value if isinstance(value, (list, tuple)) else [value] * N_STORIES
+        out.update(zip(value_columns(q), values))
+    return out
+
+
+def _number(raw):
+    return float(raw) if raw not in ("", "nan") else math.nan
 
 
 def read_opensees_points(path):
-    """{(run, dt): point} of the OpenSees rows of an earlier CSV of this script."""
+    """{(run, dt): point} of the OpenSees rows of an earlier CSV of this script; a CSV without
+    some quantity's columns (written before it was added) gives no points: they are re-run."""
     out = {}
     with open(path, newline="", encoding="utf-8") as fh:
-        for r in csv.DictReader(fh):
+        reader = csv.DictReader(fh)
+        if not all(c in reader.fieldnames for q in QUANTITIES for c in value_columns(q)):
+            return out
+        for r in reader:
             if r["tool"] != "opensees":
                 continue
-            point = {"status": r["status"]}
-            for key in ("cpu", "steps", "impacts", "energy_residual", *QUANTITIES):
-                raw = r[key + " [s]" if key == "cpu" else key]
-                point[key] = float(raw) if raw not in ("", "nan") else math.nan
+            point = {"status": r["status"], "cpu": _number(r["cpu [s]"])}
+            for key in ("steps", "impacts", "energy_residual"):
+                point[key] = _number(r[key])
+            for q in QUANTITIES:
+                values = [_number(r[c]) for c in value_columns(q)]
+                point[q] = values if q in PER_STORY else values[0]
             out[(r["run"], float(r["setting"]))] = point
     return out
 
@@ -197,7 +253,7 @@ def read_rows(path):
             row = {k.replace(" [s]", ""): v for k, v in r.items()}
             for k in row:
                 if k not in ("run", "tool", "status"):
-                    row[k] = float(row[k]) if row[k] not in ("", "nan") else math.nan
+                    row[k] = _number(row[k])
             rows.append(row)
     return rows
 
@@ -206,7 +262,7 @@ def write_csv(rows, path):
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow([c + (" [s]" if c == "cpu" else "") for c in COLUMNS])
-    for r in rows:
+    for r in map(flatten, rows):
         w.writerow([r[c] for c in COLUMNS])
     write_text(path, buf.getvalue())
 
@@ -219,7 +275,8 @@ def finest_row(rows):
 
 def summarise(rows, quantity="peak_impact_force", at_rtol=1e-4):
     """One dict per run: femoat at ``at_rtol``, OpenSees at the same error, the ratio, the worst
-    ratio over femoat's settings within TARGET_ERROR, and the reference cross-check."""
+    ratio over femoat's settings within TARGET_ERROR, and the reference cross-check (the
+    quantity's error of OpenSees' finest step against the reference)."""
     key = f"err_{SHORT[quantity]}"
     out = []
     for name in dict.fromkeys(r["run"] for r in rows):
@@ -250,8 +307,7 @@ def summarise(rows, quantity="peak_impact_force", at_rtol=1e-4):
         if f is not None:
             c_own, _, b_own = cpu_at_error(own_pts, f[key])
             row.update(ratio_self=c_own / f["cpu"], bound_self=b_own)
-        row["ref_vs_opensees_finest"] = (max(finest[f"err_{SHORT[q]}"] for q in QUANTITIES)
-                                         if finest else math.nan)
+        row["ref_vs_opensees_finest"] = finest[key] if finest else math.nan
         row["opensees_finest_dt"] = finest["setting"] if finest else math.nan
         out.append(row)
     return out
@@ -260,32 +316,50 @@ def summarise(rows, quantity="peak_impact_force", at_rtol=1e-4):
 _BOUND = {"=": " ", ">=": "≥", "<=": "≤", "?": "?"}
 
 
-def format_summary(summary, at_rtol=1e-4):
-    head = (f"{'run':26s}{'femoat ms':>10s}{'err F':>9s}{'OpenSees dt':>13s}{'OpenSees s':>11s}"
+def format_summary(summary, quantity="peak_impact_force", at_rtol=1e-4):
+    """The table of ``summarise(rows, quantity, at_rtol)``, one line per run."""
+    err = f"err {SHORT[quantity]}"
+    head = (f"{'run':26s}{'femoat ms':>10s}{err:>10s}{'OpenSees dt':>13s}{'OpenSees s':>11s}"
             f"{'ratio':>9s}{'worst ≤0.5%':>12s}{'ref vs OS':>10s}{'ratio*':>9s}")
-    lines = [f"femoat at rtol = {at_rtol:g}; OpenSees at the same peak-force error "
+    lines = [f"femoat at rtol = {at_rtol:g}; OpenSees at the same {label(quantity)} error "
              "(ratio*: OpenSees' error against its own finest step)", head]
     for s in summary:
         b = _BOUND[s.get("bound", "?")]
+        dt = b + format(s.get("dt_opensees", math.nan), ".2g")
+        ratio = b + format(s.get("ratio", math.nan), ".0f")
+        worst = _BOUND[s["worst_bound"]] + format(s["worst_ratio_within_target"], ".0f")
+        ratio_self = _BOUND[s.get("bound_self", "?")] + format(s.get("ratio_self", math.nan), ".0f")
         lines.append(
             f"{s['run']:26s}{s.get('cpu_femoat', math.nan) * 1e3:10.1f}"
-            f"{s.get('err_femoat', math.nan):9.1e}{b + format(s.get('dt_opensees', math.nan), '.2g'):>13s}"
-            f"{s.get('cpu_opensees', math.nan):11.2f}{b + format(s.get('ratio', math.nan), '.0f'):>9s}"
-            f"{_BOUND[s['worst_bound']] + format(s['worst_ratio_within_target'], '.0f'):>12s}"
-            f"{s['ref_vs_opensees_finest']:10.1e}"
-            f"{_BOUND[s.get('bound_self', '?')] + format(s.get('ratio_self', math.nan), '.0f'):>9s}")
+            f"{s.get('err_femoat', math.nan):10.1e}{dt:>13s}{s.get('cpu_opensees', math.nan):11.2f}"
+            f"{ratio:>9s}{worst:>12s}{s['ref_vs_opensees_finest']:10.1e}{ratio_self:>9s}")
     return "\n".join(lines)
 
 
-def plot(rows, path):
+def format_range(summary, quantity="peak_impact_force", at_rtol=1e-4):
+    """One line: the range over the runs of femoat's error at ``at_rtol`` and of the speed ratio
+    at that error (≥/≤ on an end that is a bound)."""
+    errs = [s["err_femoat"] for s in summary if math.isfinite(s.get("err_femoat", math.nan))]
+    ratios = sorted((s["ratio"], s["bound"]) for s in summary
+                    if math.isfinite(s.get("ratio", math.nan)))
+    if not errs or not ratios:
+        return f"{label(quantity):26s} no runs at rtol {at_rtol:g}"
+    (lo, b_lo), (hi, b_hi) = ratios[0], ratios[-1]
+    n_bound = sum(b != "=" for _, b in ratios)
+    return (f"{label(quantity):26s} err {min(errs):.1e}–{max(errs):.1e}   ratio "
+            f"{_BOUND[b_lo].strip()}{lo:.0f}–{_BOUND[b_hi].strip()}{hi:.0f}"
+            f"   ({n_bound} of {len(ratios)} ratios are bounds)")
+
+
+def plot(rows, path, quantities=QUANTITIES):
     from femoat.plotting.style import LAW_STYLE, pyplot
 
     plt = pyplot()
     groups = [(w, d) for d in DAMPING_CHOICES for w in WALLS]
-    fig, axes = plt.subplots(len(QUANTITIES), len(groups), figsize=(4.2 * len(groups),
-                             3.4 * len(QUANTITIES)), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(len(quantities), len(groups), figsize=(4.2 * len(groups),
+                             3.4 * len(quantities)), sharey=True, squeeze=False)
     for j, (wall, damping) in enumerate(groups):
-        for i, q in enumerate(QUANTITIES):
+        for i, q in enumerate(quantities):
             ax = axes[i, j]
             key = f"err_{SHORT[q]}"
             for law in LAWS:
@@ -303,7 +377,7 @@ def plot(rows, path):
                                   label=f"{law} {tool}", **style)
             if q == "peak_impact_force":
                 ax.axvline(TARGET_ERROR, color="0.5", lw=0.8, ls=":")
-            ax.set_xlabel(f"relative error, {q.replace('_', ' ')}")
+            ax.set_xlabel(f"relative error, {label(q) if q in PER_STORY else q.replace('_', ' ')}")
             if j == 0:
                 ax.set_ylabel("CPU time [s]")
             if i == 0:
@@ -312,7 +386,7 @@ def plot(rows, path):
     axes[0, 0].legend(fontsize=7, ncol=2)
     fig.suptitle("Work-precision: femoat (solid, rtol) vs OpenSees (dashed, fixed dt), "
                  "paper runs")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.4 / fig.get_figheight()))  # room for the suptitle
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110)
     plt.close(fig)
@@ -359,6 +433,9 @@ def main(argv=None):
     rows = []
     csv_path = args.out / f"work_precision{suffix}.csv"
     cached = read_opensees_points(args.reuse_opensees) if args.reuse_opensees else {}
+    if args.reuse_opensees and not cached:
+        log(f"{args.reuse_opensees}: no reusable OpenSees points (a CSV without the drift and "
+            "floor acceleration columns?): OpenSees is run")
     for k, (wall, law, damping) in enumerate(cases):
         log(f"[{k + 1}/{len(cases)}] {wall}/{law}/{damping}")
         rows += run_case(wall, law, damping, motion, duration, rtols, dts, log, cached)
@@ -369,8 +446,12 @@ def main(argv=None):
 
 
 def report(rows, motion_name, duration, png):
-    """Print the summary tables and targets, write them beside ``png`` (.txt), plot."""
-    summary = summarise(rows)
+    """Print the summary tables, targets and ranges, write them beside ``png`` (.txt), plot.
+    Quantities without error columns in ``rows`` (a CSV from before they were added) are left
+    out."""
+    quantities = [q for q in QUANTITIES if rows and f"err_{SHORT[q]}" in rows[0]]
+    summaries = {q: summarise(rows, q) for q in quantities}
+    summary = summaries["peak_impact_force"]
 
     def missed(flags):
         return "all runs" if not flags else "missed by " + ", ".join(flags)
@@ -384,13 +465,15 @@ def report(rows, motion_name, duration, png):
              f"         ratio ≥ {TARGET_RATIO:.0f} at rtol 1e-4: {missed(at_default)}",
              f"         ratio ≥ {TARGET_RATIO:.0f} at every femoat setting within 0.5 %: "
              f"{missed(worst)}"]
-    for q in QUANTITIES[1:]:
-        parts += ["", format_summary(summarise(rows, q)).replace("err F", f"err {SHORT[q]}")
-                  .replace("peak-force", q.replace("_", " "))]
+    for q in quantities[1:]:
+        parts += ["", format_summary(summaries[q], q)]
+    parts += ["", f"ranges over the {len(summary)} runs, femoat at rtol 1e-4 (err: its error; "
+              "ratio: OpenSees' CPU / femoat's at that error)"]
+    parts += [format_range(summaries[q], q) for q in quantities]
     text = "\n".join(parts)
     print(text)
     write_text(png.with_suffix(".txt"), text + "\n")
-    plot(rows, png)
+    plot(rows, png, quantities)
 
 
 if __name__ == "__main__":
