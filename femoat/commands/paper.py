@@ -2,6 +2,7 @@
 
 from pathlib import Path
 
+from femoat.integration.settings import Integrator
 from femoat.walls.presets import DAMPING_CHOICES
 
 
@@ -20,8 +21,8 @@ def add_parser(sub):
                    help="only the first 4 s of the record (all impacts of the default model)")
     p.add_argument("--calibrate", action="store_true",
                    help="calibrate each damped law to reach e = 0.70 exactly at 10 in/s")
-    p.add_argument("--rtol", type=float, default=1e-4,
-                   help="solver accuracy (local error / DOF scale; default 1e-4)")
+    p.add_argument("--rtol", type=float, default=Integrator().rtol,
+                   help=f"solver accuracy (local error / DOF scale; default {Integrator().rtol:g})")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
     p.add_argument("--out", type=Path, default=Path("femoat_output/paper"),
                    help="output folder (default: ./femoat_output/paper)")
@@ -29,7 +30,6 @@ def add_parser(sub):
 
 
 def run(args):
-    from femoat.integration.settings import Integrator
     from femoat.paper import run_paper_study
     from femoat.report import format_table, summary_rows, write_outputs
 

@@ -26,7 +26,7 @@ State = namedtuple("State", ["t", "h", "ag_now", "u", "v", "a", "F", "el_S", "el
                              "el_W", "c_H", "c_f", "c_d", "c_W", "c_closed", "energy", "stats",
                              "first_exceed"])
 Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact", "err_ref",
-                                   "limits"])
+                                   "scale_accel", "limits"])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd"])
 Recorder = namedtuple("Recorder", ["t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv",
                                    "closed"])

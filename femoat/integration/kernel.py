@@ -27,8 +27,11 @@ M·a₁ + (1+α)·F(u₁, v₁) − α·F(u₀, v₀) = (1+α)·p₁ − α·p�
 
 Step control: the Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa| per DOF, measured in the DOF's
 own coordinate (a floor by its story's drift, Δa_i − Δa_ref(i)) and scaled by rtol·scale_i (the
-story's yield drift, the gap; a separate, tighter scale vector while any contact is closed;
-see :func:`femoat.integration.solve.error_scales`); steps never
+story's yield drift, the gap; a separate, tighter scale vector while any contact is closed),
+and while all gaps are open each building DOF's acceleration error (K_T·e)_i/m_i against its
+own scale (see :func:`femoat.integration.solve.error_scales`); a step in which an element
+changes branch (stick to slip, yield) is shortened to end just past the kink
+(:func:`find_kink`), so that a sample sits on the corner of the force; steps never
 cross a sample of the ground record (a_g is linear between samples); a gap closing or opening
 inside a step shortens the step until it ends within gap_tol of δ = 0, where the contact episode
 starts (capturing δ̇₀) or ends.
@@ -267,6 +270,15 @@ def _mark_last_sample(c, t, state, rec):
         rec.closed[k - 1, c] = state.c_closed[c]
 
 
+@njit(cache=True, inline="always")
+def _sample_before_event(t, model, state, rec):
+    """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
+    state if it was skipped (``record_every`` > 1), so that the event has its sample."""
+    k = state.stats[S_NOUT]
+    if t > 0.0 and (k == 0 or rec.t[k - 1] != t):
+        record(t, model, state, rec)
+
+
 @njit(cache=True)
 def _first_contact_step(v_close, h_start, h_contact, gap_tol):
     """Step after a closure: small (h_start) for a real impact, whose force law may rise
@@ -383,10 +395,11 @@ def _step_end(t, h, t_goal, shortened, fopt, n_samples):
 
 
 @njit(cache=True, inline="always")
-def local_error(hh, any_closed, state, settings, work):
+def local_error(hh, any_closed, model, state, settings, work):
     """The largest scaled Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa|/(rtol·scale) of the
     step (1 = at the tolerance), each DOF measured in its own coordinate: a story's drift
-    against its floor below (``err_ref``)."""
+    against its floor below (``err_ref``); while all gaps are open also each building DOF's
+    acceleration error (K_T·e)_i/m_i against rtol·``scale_accel``."""
     fopt = settings.fopt
     err_coef = abs(fopt[F_BETA] - 1.0 / 6.0)
     rtol = fopt[F_RTOL]
@@ -403,6 +416,18 @@ def local_error(hh, any_closed, state, settings, work):
         q = hh * hh * err_coef * abs(da) / (rtol * sc)
         if q > err:
             err = q
+    if not any_closed:
+        # the acceleration error of each building DOF, (K_T·e)_i / m_i with e the displacement
+        # errors above (the walls are uncoupled from the building while all gaps are open)
+        s_acc, KT, M = settings.scale_accel, work.KT, model.M
+        n_struct = settings.iopt[I_N_STRUCT]
+        for i in range(n_struct):
+            s = 0.0
+            for j in range(n_struct):
+                s += KT[i, j] * (w_a[j] - a[j])
+            q = hh * hh * err_coef * abs(s) / (M[i, i] * rtol * s_acc[i])
+            if q > err:
+                err = q
     return err
 
 
@@ -579,6 +604,7 @@ def _after_newton_failure(t, hh, model, state, settings, work, rec):
                 # aim short of the crossing so that the step converges and progresses
                 h_cross = min(h_cross, 0.9 * (-c_d[c] / dd0))
                 continue
+            _sample_before_event(t, model, state, rec)
             _open_episode(c, dd0, state)
             _mark_last_sample(c, t, state, rec)
             started = True
@@ -631,6 +657,72 @@ def find_events(hh, model, state, settings, work):
                 theta = th
                 c_min = c
     return theta, c_min, event_now
+
+
+# ---- material kinks -------------------------------------------------------------------------
+
+KINK_RATIO = 0.5
+"""An element's tangent that changes by more than this fraction of the larger of its start and
+end values within a step marks a kink (a branch change: stick to slip, yield, capping)."""
+KINK_BISECTIONS = 12
+"""Bisections locating a kink: the step lands within 2^-12 of its length past it."""
+KINK_RESOLUTION = 2.0 ** -KINK_BISECTIONS
+"""A kink closer than this fraction to the start of a step is not landed on."""
+
+
+@njit(cache=True, inline="always")
+def _element_rates(e, model, v):
+    i, j = model.el_i[e], model.el_j[e]
+    return v[i] - (v[j] if j >= 0 else 0.0)
+
+
+@njit(cache=True, inline="always")
+def _hermite(th, h, x0, dx0, x1, dx1):
+    """Cubic Hermite interpolant and its time derivative at fraction ``th`` of a step ``h``."""
+    t2 = th * th
+    t3 = t2 * th
+    x = (2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * h * dx0 \
+        + (-2 * t3 + 3 * t2) * x1 + (t3 - t2) * h * dx1
+    dx = ((6 * t2 - 6 * th) * x0 + (-6 * t2 + 6 * th) * x1) / h \
+        + (3 * t2 - 4 * th + 1) * dx0 + (3 * t2 - 2 * th) * dx1
+    return x, dx
+
+
+@njit(cache=True, inline="always")
+def find_kink(hh, model, state, work):
+    """Fraction θ of the trial step just past the earliest element kink inside it (2: none).
+
+    An element's tangent at the start (its committed branch) and at the trial end are compared;
+    when they differ by more than KINK_RATIO, the branch change is located by bisection on the
+    element's deformation along the step's cubic Hermite interpolant, each point evaluated from
+    the committed state. Landing the step there puts a sample on the corner of the force (and
+    of the accelerations), which step ends would otherwise cut off.
+    """
+    theta = 2.0
+    el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
+    for e in range(el_code.size):
+        d0, d1 = state.el_d[e], work.ed[e]
+        dv0 = _element_rates(e, model, state.v)
+        dv1 = _element_rates(e, model, work.v)
+        # the start's branch is read a resolution into the step: at the committed point itself
+        # a material may sit on the boundary of two branches (a sliding bearing at |z| = 1)
+        lo, hi = KINK_RESOLUTION, 1.0
+        d, dv = _hermite(lo, hh, d0, dv0, d1, dv1)
+        _, k0, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
+        _, k1, _ = material_trial(el_code[e], el_P[e], el_S[e], d1, dv1)
+        if abs(k1 - k0) <= KINK_RATIO * max(abs(k0), abs(k1)):
+            continue
+        for _ in range(KINK_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            d, dv = _hermite(mid, hh, d0, dv0, d1, dv1)
+            _, k, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
+            if abs(k - k0) <= abs(k - k1):
+                lo = mid
+            else:
+                hi = mid
+        if hi < theta:
+            theta = hi
+    return theta
 
 
 # ---- accepting and recording a step -----------------------------------------------------------
@@ -743,6 +835,7 @@ def _declare_event(c, t, hh, h, model, state, settings, work, rec):
     """An event at the committed state (time ``t``): contact ``c``'s gap closed while it was
     already touching, or its crossing is closer than the smallest step. Open (or close) the
     episode there, restart, and return the step to redo (``h`` unless an episode opened)."""
+    _sample_before_event(t, model, state, rec)
     if state.c_closed[c]:
         _close_episode(c, state)
     else:
@@ -801,7 +894,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             if failed:
                 return _stop(NEWTON_FAILED, t, h, state)
             continue
-        err = local_error(hh, any_closed, state, settings, work)
+        err = local_error(hh, any_closed, model, state, settings, work)
         if err > 1.0 and hh > hmin:
             stats[S_REJECT_ERR] += 1
             h = max(hh * _step_factor(err), hmin)
@@ -810,6 +903,14 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if event_now >= 0:  # closure at the committed state: start there, redo the step small
             h = _declare_event(event_now, t, hh, h, model, state, settings, work, rec)
             continue
+        if theta > 1.0 and not shortened:
+            theta_k = find_kink(hh, model, state, work)
+            if theta_k < 1.0 and hh * theta_k >= hmin:
+                stats[S_REJECT_ERR] += 1
+                h = hh * theta_k
+                shortened = True
+                landing = -1
+                continue
         if theta <= 1.0:
             # shorten by more than the time round-off, or the same step would repeat forever
             h_new = min(hh * theta, hh - 64.0 * 2.3e-16 * abs(t1))
