@@ -1,7 +1,7 @@
 """Benchmark the 10 paper runs: CPU time, steps, Newton iterations, and accuracy against the same
 run at a 10× stricter tolerance. Also the start-up time of a second process (numba cache).
 
-    python benchmarks/paper_runs.py [--rtol 3e-6] [--damping published|consistent]
+    python benchmarks/paper_runs.py [--rtol 1e-5] [--damping published|consistent]
 
 Prints a table; nothing is asserted (speed is measured here, never in tests).
 """

@@ -20,7 +20,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     motion : GroundMotion
         Ground acceleration record (femoat.ground_motions), in g at interval dt [s].
     integrator : Integrator or None
-        Integration settings (default: Newmark average acceleration, rtol = 3e-6: every peak within 1e-3).
+        Integration settings (default: Newmark average acceleration, rtol = 1e-5: every peak within 1e-3).
     extra_time : float
         Free vibration after the record [s] (default 2 s, as in the paper study).
     duration : float or None

@@ -97,7 +97,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     if u.shape != (n,) or v.shape != (n,) or not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
         raise ValueError(f"u0 and v0 must be finite arrays of length {n} ({packed.dof_names}).")
 
-    scale_open, scale_contact, err_ref, scale_accel = error_scales(packed)
+    scale_open, scale_contact, err_ref, scale_accel = error_scales(packed, np.abs(ag).max())
     d_me = float(scale_contact[0])
     # first step after closure: a fraction of the local contact half-period π·√(m/k_eff)
     h_contact = math.inf
@@ -223,16 +223,18 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     return hist
 
 
-ACCELERATION_SCALE = 0.3 * G
-"""[in/s²] What the local error of a building DOF's absolute acceleration is measured against
-(times rtol) while all gaps are open: the floors' higher modes carry little drift but most of the
-floor acceleration, so a drift scale alone lets them run with too large steps."""
+ACCELERATION_FRACTION = 0.15
+"""While all gaps are open, a building DOF's acceleration error is measured against rtol times
+this fraction of the record's peak ground acceleration (of 1 g for a record of zeros): the
+floors' higher modes carry little drift but much of the floor acceleration, and a drift scale
+alone lets them run with too large steps. Proportional to the record, so that a weak record's
+accelerations are as accurate, relative to their peaks, as a strong one's."""
 
 
-def error_scales(packed):
+def error_scales(packed, pga):
     """(scale while all gaps are open, scale while a contact is closed, reference DOF) of each
     DOF's local error [in], and the scale of each building DOF's acceleration error [in/s²]
-    (``inf`` for the walls).
+    (``inf`` for the walls), for a record of peak ground acceleration ``pga`` [in/s²].
 
     The error of a floor is measured on its story's drift (against the floor below,
     ``err_ref``), scaled by the story's yield drift: a story's response is judged on its own
@@ -242,7 +244,7 @@ def error_scales(packed):
     expected indentation, while a contact is closed.
 
     While all gaps are open, each building DOF's acceleration error, estimated from its
-    displacement error e as (K_T·e)_i / m_i, is also held below rtol·ACCELERATION_SCALE.
+    displacement error e as (K_T·e)_i / m_i, is also held below rtol·ACCELERATION_FRACTION·pga.
     """
     n, ns = packed.n, packed.n_struct
     gaps = packed.c_gap
@@ -259,7 +261,7 @@ def error_scales(packed):
             drift = yield_drift(mat)
             scale_open[i] = scale_contact[i] = min(gap_scale, drift) if drift else gap_scale
     scale_accel = np.full(n, np.inf)
-    scale_accel[:ns] = ACCELERATION_SCALE
+    scale_accel[:ns] = ACCELERATION_FRACTION * (pga if pga > 0.0 else G)
     return scale_open, scale_contact, err_ref, scale_accel
 
 

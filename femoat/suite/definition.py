@@ -10,7 +10,7 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     [walls]
     preset = "concrete"
     [solver]
-    rtol = 1e-4                   # default 3e-6 (femoat.integration.Integrator)
+    rtol = 1e-4                   # default 1e-5 (femoat.integration.Integrator)
 
     [collapse]                    # femoat.collapse.CollapseCriteria
     drift_ratio = 0.10            # [-] story drift / story height
