@@ -95,7 +95,9 @@ def main(argv=None):
             from femoat.opensees import opensees_run
 
             try:
-                twin = peaks(opensees_run(model, motion, args.opensees_dt)["peaks"])
+                # V: OpenSees' 1e-10 in increment test stagnates at t = 2.129 s (concrete)
+                tol = 1e-8 if name.endswith("/V") else 1e-10
+                twin = peaks(opensees_run(model, motion, args.opensees_dt, tol=tol)["peaks"])
                 print(row(name, "ref/OS", "", "", "", errors(ref, twin)), flush=True)
             except Exception as exc:  # report, do not stop the table
                 print(f"{name:28s} OpenSees failed: {str(exc)[:80]}", flush=True)

@@ -155,7 +155,11 @@ def test_default_rtol_paper_drifts_match_opensees(wall, law):
     from femoat.opensees import opensees_run
 
     model, motion = twin_model(wall, law), paper_motion()
-    twin = opensees_run(model, motion, 2e-5)["peaks"]
+    # OpenSees' Newton test on the displacement increment: 1e-10 in (the twin's default) cannot
+    # be met at t = 2.129 s of concrete/V (round-off with the stiff Kelvin-Voigt contact: the
+    # increments stagnate); at 1e-8 in it converges, and the drift peaks of E, J and H are the
+    # same at both tolerances to 1e-7.
+    twin = opensees_run(model, motion, 2e-5, tol=1e-8 if law == "V" else 1e-10)["peaks"]
     ours = run(model, motion).peaks
     for d, d_os in zip(ours["peak_drift"], twin["peak_drift"]):
         assert d == pytest.approx(d_os, rel=3e-4)

@@ -314,7 +314,9 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw):
     if status != 0 or m < n_steps:
         raise OpenSeesFailure(
             f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
-            f"dt = {dt:g} s); a smaller dt may help.", "diverged", (m + 1) * dt, m + 1)
+            f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
+            "[in]: below ~1e-9 in, round-off can keep a stiff contact's increments from "
+            "meeting it).", "diverged", (m + 1) * dt, m + 1)
     return dict(x=x, acc=acc, f=f, cpu=cpu)
 
 
