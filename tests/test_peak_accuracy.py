@@ -185,3 +185,18 @@ def test_default_rtol_fema_peaks_match_opensees(record_id, component):
     assert set(theirs) == set(ours)
     errors = relative_errors(ours, theirs)
     assert max(errors.values()) < 1e-3, errors
+
+
+def test_a_tiny_record_does_not_ask_for_unbounded_steps():
+    # The acceleration scale is 0.15 × PGA but never below 0.15 × 0.1 g: a run driven by its
+    # initial conditions under a record of zeros, or of one 1e-6 g sample, takes the same steps
+    # (without the floor the steps grew as PGA^(-1/3): 1.7e5 steps for 2 s at 1e-6 g).
+    model = PoundingModel(Building(), ())
+    steps = []
+    for blip in (0.0, 1e-6):
+        a = np.zeros(201)
+        a[100] = blip
+        r = run(model, GroundMotion(a, 0.01, name="quiet"), duration=2.0, v0=[10.0] * 4)
+        steps.append(r.meta["stats"]["steps"])
+    assert steps[1] == pytest.approx(steps[0], rel=0.01)
+    assert steps[0] < 10000

@@ -18,11 +18,12 @@ class Integrator:
         rtol × the DOF's scale: a story's drift against its yield drift, the base mat and the
         walls against the gap while all gaps are open and against δ_me while a contact is
         closed [in], and the building's accelerations against 0.15 × the record's peak ground
-        acceleration [in/s²] while all gaps are open
+        acceleration (at least 0.1 g) [in/s²] while all gaps are open
         (:func:`femoat.integration.solve.error_scales`). Smaller is more accurate and slower;
         peaks converge about as rtol^0.6. The default is chosen so that every peak (impact
         forces, displacements, drifts, floor accelerations) is within 1e-3 of a converged run
-        (``benchmarks/peak_accuracy.py`` measures it); 1e-4 is about 3x faster and within ~1 %.
+        (``benchmarks/peak_accuracy.py`` measures it); 1e-4 takes about half the steps and is
+        within 1.6e-3.
     max_step : float or None
         Largest step [s]; ``None`` means the ground record's sample interval (steps never cross a
         sample anyway, so the excitation is exactly piecewise linear).

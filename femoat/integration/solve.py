@@ -225,10 +225,14 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
 
 ACCELERATION_FRACTION = 0.15
 """While all gaps are open, a building DOF's acceleration error is measured against rtol times
-this fraction of the record's peak ground acceleration (of 1 g for a record of zeros): the
+this fraction of the record's peak ground acceleration (at least ACCELERATION_FLOOR): the
 floors' higher modes carry little drift but much of the floor acceleration, and a drift scale
 alone lets them run with too large steps. Proportional to the record, so that a weak record's
 accelerations are as accurate, relative to their peaks, as a strong one's."""
+ACCELERATION_FLOOR = 0.1 * G
+"""[in/s²] The smallest PGA the acceleration scale is taken from: a record of zeros or a tiny
+one (a run driven by its initial conditions) would otherwise ask for steps without bound
+(they grow as PGA^(-1/3))."""
 
 
 def error_scales(packed, pga):
@@ -261,7 +265,7 @@ def error_scales(packed, pga):
             drift = yield_drift(mat)
             scale_open[i] = scale_contact[i] = min(gap_scale, drift) if drift else gap_scale
     scale_accel = np.full(n, np.inf)
-    scale_accel[:ns] = ACCELERATION_FRACTION * (pga if pga > 0.0 else G)
+    scale_accel[:ns] = ACCELERATION_FRACTION * max(pga, ACCELERATION_FLOOR)
     return scale_open, scale_contact, err_ref, scale_accel
 
 
