@@ -287,6 +287,19 @@ def _first_contact_step(v_close, h_start, h_contact, gap_tol):
     return h_start if v_close * h_start > gap_tol else h_contact
 
 
+@njit(cache=True, inline="always")
+def _hermite(th, h, x0, dx0, x1, dx1):
+    """The cubic Hermite interpolant of a step of length ``h`` (values x0, x1 and time
+    derivatives dx0, dx1 at its ends) at fraction ``th``, and its derivative in ``th``."""
+    t2 = th * th
+    t3 = t2 * th
+    x = (2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * h * dx0 \
+        + (-2 * t3 + 3 * t2) * x1 + (t3 - t2) * h * dx1
+    dx = (6 * t2 - 6 * th) * x0 + (3 * t2 - 4 * th + 1) * h * dx0 \
+        + (-6 * t2 + 6 * th) * x1 + (3 * t2 - 2 * th) * h * dx1
+    return x, dx
+
+
 @njit(cache=True)
 def _crossing(d0, dd0, d1, dd1, h):
     """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero.
@@ -299,12 +312,7 @@ def _crossing(d0, dd0, d1, dd1, h):
     lo, hi = 0.0, 1.0
     th = d0 / (d0 - d1)
     for _ in range(100):
-        t2 = th * th
-        t3 = t2 * th
-        p = (2 * t3 - 3 * t2 + 1) * d0 + (t3 - 2 * t2 + th) * h * dd0 \
-            + (-2 * t3 + 3 * t2) * d1 + (t3 - t2) * h * dd1
-        dp = (6 * t2 - 6 * th) * d0 + (3 * t2 - 4 * th + 1) * h * dd0 \
-            + (-6 * t2 + 6 * th) * d1 + (3 * t2 - 2 * th) * h * dd1
+        p, dp = _hermite(th, h, d0, dd0, d1, dd1)
         if p == 0.0:
             return th
         if (p > 0.0) == (d0 > 0.0):
@@ -677,18 +685,6 @@ def _element_rates(e, model, v):
 
 
 @njit(cache=True, inline="always")
-def _hermite(th, h, x0, dx0, x1, dx1):
-    """Cubic Hermite interpolant and its time derivative at fraction ``th`` of a step ``h``."""
-    t2 = th * th
-    t3 = t2 * th
-    x = (2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * h * dx0 \
-        + (-2 * t3 + 3 * t2) * x1 + (t3 - t2) * h * dx1
-    dx = ((6 * t2 - 6 * th) * x0 + (-6 * t2 + 6 * th) * x1) / h \
-        + (3 * t2 - 4 * th + 1) * dx0 + (3 * t2 - 2 * th) * dx1
-    return x, dx
-
-
-@njit(cache=True, inline="always")
 def find_kink(hh, model, state, work):
     """Fraction θ of the trial step just past the earliest element kink inside it (2: none).
 
@@ -707,15 +703,15 @@ def find_kink(hh, model, state, work):
         # the start's branch is read a resolution into the step: at the committed point itself
         # a material may sit on the boundary of two branches (a sliding bearing at |z| = 1)
         lo, hi = KINK_RESOLUTION, 1.0
-        d, dv = _hermite(lo, hh, d0, dv0, d1, dv1)
-        _, k0, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
+        d, dth = _hermite(lo, hh, d0, dv0, d1, dv1)
+        _, k0, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dth / hh)
         _, k1, _ = material_trial(el_code[e], el_P[e], el_S[e], d1, dv1)
         if abs(k1 - k0) <= KINK_RATIO * max(abs(k0), abs(k1)):
             continue
         for _ in range(KINK_BISECTIONS):
             mid = 0.5 * (lo + hi)
-            d, dv = _hermite(mid, hh, d0, dv0, d1, dv1)
-            _, k, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
+            d, dth = _hermite(mid, hh, d0, dv0, d1, dv1)
+            _, k, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dth / hh)
             if abs(k - k0) <= abs(k - k1):
                 lo = mid
             else:
