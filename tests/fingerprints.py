@@ -1,4 +1,4 @@
-"""Fingerprints of the 20 paper runs: the solver's exact output, to hold a refactor to bit-identity.
+"""Fingerprints of the 20 paper runs with the Newmark method: the solver's exact output, to hold a refactor to bit-identity.
 
 For each wall (concrete, steel), contact law (E, V, J, H, M) and impact damping (published,
 consistent) under :func:`femoat.paper.paper_motion`, a sha256 of every recorded history's bytes
@@ -55,6 +55,7 @@ def keys():
 
 def compute(quick, backend="jit", only=None):
     """{"wall/law/damping": fingerprint} of the paper runs (all 20, or the keys in ``only``)."""
+    from femoat.integration.settings import Integrator
     from femoat.paper import paper_model, paper_motion
     from femoat.run import run
 
@@ -64,8 +65,8 @@ def compute(quick, backend="jit", only=None):
         name = f"{wall}/{law}/{damping}"
         if only is not None and name not in only:
             continue
-        r = run(paper_model(wall, law, damping), motion, extra_time=1.0 if quick else 2.0,
-                backend=backend)
+        r = run(paper_model(wall, law, damping), motion, Integrator(method="newmark"),
+                extra_time=1.0 if quick else 2.0, backend=backend)
         out[name] = fingerprint(r)
     return out
 

@@ -45,7 +45,7 @@ from femoat.jit import njit
 from femoat.numba_cache import drop_stale_cache
 
 _PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [_PKG / "integration" / "bundles.py",
+drop_stale_cache(__file__, [*sorted((_PKG / "integration").glob("*.py")),
                             *sorted((_PKG / "contact").glob("*.py")),
                             *sorted((_PKG / "structure" / "materials").glob("*.py"))])
 
@@ -53,165 +53,59 @@ from femoat.contact.kernels import (  # noqa: E402
     contact_closure,
     recorded_force,
     step_commit,
-    step_force,
 )
+from femoat.integration.forces import (  # noqa: E402, F401  (ground_accel, internal_force: entry points)
+    _internal_force,
+    _solve_dense,
+    ground_accel,
+    internal_force,
+)
+from femoat.integration import explicit  # noqa: E402
 from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
-# Status codes returned by run_chunk.
-DONE, STOPPED, BUFFER_FULL, NEWTON_FAILED, STEP_TOO_SMALL, LIMIT_REACHED = 0, 1, 2, 3, 4, 5
-
-# Float options (fopt)
-F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCONTACT, \
-    F_GAPTOL = range(11)
-N_FOPT = 11
-# Integer options (iopt)
-I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_LIMITS, I_N_STRUCT = 0, 1, 2, 3, 4
-# I_LIMITS: what the limit states (collapse criteria) do
-LIMITS_OFF, LIMITS_RECORD, LIMITS_STOP = 0, 1, 2
-# Stats (stats), integer
-S_STEPS, S_REJECT_ERR, S_REJECT_NEWTON, S_NEWTON, S_NOUT, S_EVENTS = range(6)
-N_STATS = 6
-# Energies (energy), float
-E_INPUT, E_VISCOUS = 0, 1
-N_ENERGY = 2
-
-
-@njit(cache=True)
-def ground_accel(ag, dt_rec, t):
-    """a_g(t) [in/s²], linear between samples, zero after the record."""
-    x = t / dt_rec
-    i = int(np.floor(x))
-    if i < 0:
-        return 0.0
-    if i >= ag.size - 1:
-        if i == ag.size - 1 and x - i < 1e-9:
-            return ag[ag.size - 1]
-        return 0.0
-    w = x - i
-    return (1.0 - w) * ag[i] + w * ag[i + 1]
-
-
-@njit(cache=True)
-def _solve_dense(A, b, n):
-    # Gaussian elimination with partial pivoting, in place; the solution overwrites b.
-    for k in range(n):
-        p = k
-        amax = abs(A[k, k])
-        for i in range(k + 1, n):
-            if abs(A[i, k]) > amax:
-                amax = abs(A[i, k])
-                p = i
-        if amax == 0.0:
-            return False
-        if p != k:
-            for j in range(n):
-                tmp = A[k, j]
-                A[k, j] = A[p, j]
-                A[p, j] = tmp
-            tmp = b[k]
-            b[k] = b[p]
-            b[p] = tmp
-        piv = A[k, k]
-        for i in range(k + 1, n):
-            f = A[i, k] / piv
-            if f != 0.0:
-                for j in range(k, n):
-                    A[i, j] -= f * A[k, j]
-                b[i] -= f * b[k]
-    for k in range(n - 1, -1, -1):
-        s = b[k]
-        for j in range(k + 1, n):
-            s -= A[k, j] * b[j]
-        b[k] = s / A[k, k]
-    return True
-
-
-
-@njit(cache=True, inline="always")
-def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, KT, CT,
-                    want_tangent, nd):
-    """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked.
-
-    Element states ``el_S`` and contact histories ``c_H`` are the committed ones (read only); the
-    element forces and deformations, contact forces and indentations are written to ``el_f``,
-    ``el_d``, ``c_f``, ``c_d``. Rows and columns from ``nd`` on are treated as diagonal
-    (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
-    Contacts act only while their episode is open (between a located closure and the located
-    separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
-    at closure), so that the step after a located closure starts from the right force.
-    """
-    M, C, K = model.M, model.C, model.K
-    el_i, el_j, el_code, el_P = model.el_i, model.el_j, model.el_code, model.el_P
-    c_B, c_gap, c_code, c_P = model.c_B, model.c_gap, model.c_code, model.c_P
-    n = u.size
-    for i in range(nd):
-        s = 0.0
-        for j in range(nd):
-            s += C[i, j] * v[j] + K[i, j] * u[j]
-        F[i] = s
-    for i in range(nd, n):
-        F[i] = C[i, i] * v[i] + K[i, i] * u[i]
-    if want_tangent:
-        for i in range(nd):
-            for j in range(nd):
-                KT[i, j] = K[i, j]
-                CT[i, j] = C[i, j]
-        for i in range(nd, n):
-            KT[i, i] = K[i, i]
-            CT[i, i] = C[i, i]
-    for e in range(el_code.size):
-        i, j = el_i[e], el_j[e]
-        d = u[i] - (u[j] if j >= 0 else 0.0)
-        dv = v[i] - (v[j] if j >= 0 else 0.0)
-        f, kf, cf = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
-        el_f[e] = f
-        el_d[e] = d
-        F[i] += f
-        if j >= 0:
-            F[j] -= f
-        if want_tangent:
-            KT[i, i] += kf
-            CT[i, i] += cf
-            if j >= 0:
-                KT[j, j] += kf
-                KT[i, j] -= kf
-                KT[j, i] -= kf
-                CT[j, j] += cf
-                CT[i, j] -= cf
-                CT[j, i] -= cf
-    for c in range(c_code.size):
-        b = c_B[c]
-        d = -c_gap[c]
-        dv = 0.0
-        for i in range(n):
-            d += b[i] * u[i]
-            dv += b[i] * v[i]
-        c_d[c] = d
-        if not c_closed[c]:
-            # no episode open: no force (a trial step that closes the gap is shortened to the
-            # located closure; a gap that has just opened within gap_tol carries nothing)
-            c_f[c] = 0.0
-            continue
-        f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], d, dv)
-        c_f[c] = f
-        if f != 0.0 or kf != 0.0 or cf != 0.0:
-            for i in range(n):
-                if b[i] != 0.0:
-                    F[i] += f * b[i]
-                    if want_tangent:
-                        for j in range(n):
-                            if b[j] != 0.0:
-                                KT[i, j] += kf * b[i] * b[j]
-                                CT[i, j] += cf * b[i] * b[j]
-
-
-@njit(cache=True)
-def internal_force(model, state, work):
-    """The state's forces at its own (u, v), without tangents (the initial equilibrium): element
-    and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
-    _internal_force(state.u, state.v, model, state.el_S, state.c_H, state.c_closed, state.el_f,
-                    state.el_d, state.c_f, state.c_d, state.F, work.KT, work.CT, False,
-                    state.u.size)
+from femoat.integration.options import (  # noqa: E402, F401  (the option slots, one home)
+    BUFFER_FULL,
+    DONE,
+    E_INPUT,
+    E_VISCOUS,
+    F_ALPHA,
+    F_BETA,
+    F_DTREC,
+    F_GAMMA,
+    F_GAPTOL,
+    F_HCONTACT,
+    F_HMAX,
+    F_HMIN,
+    F_NTOL,
+    F_RTOL,
+    F_TEND,
+    I_LIMITS,
+    I_MAXIT,
+    I_METHOD,
+    I_N_COUPLED,
+    I_N_EXPLICIT,
+    I_N_STRUCT,
+    I_RECORD_EVERY,
+    LIMIT_REACHED,
+    LIMITS_OFF,
+    LIMITS_RECORD,
+    LIMITS_STOP,
+    METHOD_DP5,
+    METHOD_NEWMARK,
+    N_ENERGY,
+    N_FOPT,
+    N_IOPT,
+    N_STATS,
+    NEWTON_FAILED,
+    S_EVENTS,
+    S_NEWTON,
+    S_NOUT,
+    S_REJECT_ERR,
+    S_REJECT_NEWTON,
+    S_STEPS,
+    STEP_TOO_SMALL,
+    STOPPED,
+)
 
 
 @njit(cache=True)
@@ -725,29 +619,39 @@ def find_kink(hh, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def accept(ag1, landing, model, state, settings, work):
+def accept(ag1, landing, explicit_step, model, state, settings, work):
     """Commit the trial step: energies, element and contact states, episode changes (a closure
     within gap_tol, the located separation of contact ``landing``), kinematics. Returns
-    (an episode opened or closed, the largest approach velocity of the closures)."""
+    (an episode opened or closed, the largest approach velocity of the closures).
+
+    Energies: the trapezoidal rule of the Newmark step, or the explicit step's own quadrature
+    (``work.de``, ``work.dW``) when ``explicit_step``."""
     C, r, c_B = model.C, model.r, model.c_B
     u, v, a, Fn = state.u, state.v, state.a, state.F
     energy = state.energy
     gap_tol = settings.fopt[F_GAPTOL]
     ag0 = state.ag_now[0]
     n = u.size
-    for i in range(n):
-        du_i = work.u[i] - u[i]
-        energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
-        cv0 = 0.0
-        cv1 = 0.0
-        for j in range(n):
-            cv0 += C[i, j] * v[j]
-            cv1 += C[i, j] * work.v[j]
-        energy[E_VISCOUS] += 0.5 * (cv0 + cv1) * du_i
+    if explicit_step:
+        energy[E_INPUT] += work.de[E_INPUT]
+        energy[E_VISCOUS] += work.de[E_VISCOUS]
+    else:
+        for i in range(n):
+            du_i = work.u[i] - u[i]
+            energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
+            cv0 = 0.0
+            cv1 = 0.0
+            for j in range(n):
+                cv0 += C[i, j] * v[j]
+                cv1 += C[i, j] * work.v[j]
+            energy[E_VISCOUS] += 0.5 * (cv0 + cv1) * du_i
     el_i, el_j = model.el_i, model.el_j
     el_f, el_d, w_ef, w_ed = state.el_f, state.el_d, work.ef, work.ed
     for e in range(el_f.size):
-        state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
+        if explicit_step:
+            state.el_W[e] += work.dW[e]
+        else:
+            state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
         i, j = el_i[e], el_j[e]
         dv = work.v[i] - (work.v[j] if j >= 0 else 0.0)
         material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv)
@@ -869,7 +773,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
     status code (see module)."""
     fopt = settings.fopt
     hmin, t_end, h_contact, gap_tol = fopt[F_HMIN], fopt[F_TEND], fopt[F_HCONTACT], fopt[F_GAPTOL]
-    rec_every = settings.iopt[I_RECORD_EVERY]
+    rec_every, method = settings.iopt[I_RECORD_EVERY], settings.iopt[I_METHOD]
     c_closed, stats = state.c_closed, state.stats
     t, h = state.t[0], state.h[0]
     t_goal = min(t_stop, t_end)
@@ -885,16 +789,30 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         hh, t1 = _step_end(t, h, t_goal, shortened, fopt, model.ag.size)
         ag1 = ground_accel(model.ag, fopt[F_DTREC], t1)
         any_closed = _any_closed(c_closed)
-        if not newton_step(hh, ag1, any_closed, model, state, settings, work):
-            h, failed = _after_newton_failure(t, hh, model, state, settings, work, rec)
-            if failed:
-                return _stop(NEWTON_FAILED, t, h, state)
-            continue
-        err = local_error(hh, any_closed, model, state, settings, work)
-        if err > 1.0 and hh > hmin:
-            stats[S_REJECT_ERR] += 1
-            h = max(hh * _step_factor(err), hmin)
-            continue
+        explicit_now = method == METHOD_DP5 and not any_closed
+        if explicit_now:
+            err = explicit.explicit_step(hh, ag1, model, state, settings, work)
+            if not np.isfinite(err):
+                if hh <= hmin:
+                    return _stop(NEWTON_FAILED, t, h, state)
+                stats[S_REJECT_ERR] += 1
+                h = max(hh * explicit.SHRINK_MIN, hmin)
+                continue
+            if err > 1.0 and hh > hmin:
+                stats[S_REJECT_ERR] += 1
+                h = max(hh * explicit.step_factor(err), hmin)
+                continue
+        else:
+            if not newton_step(hh, ag1, any_closed, model, state, settings, work):
+                h, failed = _after_newton_failure(t, hh, model, state, settings, work, rec)
+                if failed:
+                    return _stop(NEWTON_FAILED, t, h, state)
+                continue
+            err = local_error(hh, any_closed, model, state, settings, work)
+            if err > 1.0 and hh > hmin:
+                stats[S_REJECT_ERR] += 1
+                h = max(hh * _step_factor(err), hmin)
+                continue
         theta, c_min, event_now = find_events(hh, model, state, settings, work)
         if event_now >= 0:  # closure at the committed state: start there, redo the step small
             h = _declare_event(event_now, t, hh, h, model, state, settings, work, rec)
@@ -919,7 +837,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
                 h = _declare_event(c_min, t, hh, h, model, state, settings, work, rec)
             continue
 
-        toggled, v_close = accept(ag1, landing, model, state, settings, work)
+        toggled, v_close = accept(ag1, landing, explicit_now, model, state, settings, work)
         t = t1
         stalls = 0
         shortened = False
@@ -927,7 +845,10 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if toggled:
             _restart(model, state, work)
         stats[S_STEPS] += 1
-        h = hh * (GROW_MAX if err < 1e-12 else min(GROW_MAX, _step_factor(err)))
+        if explicit_now:
+            h = hh * explicit.step_factor(err)
+        else:
+            h = hh * (GROW_MAX if err < 1e-12 else min(GROW_MAX, _step_factor(err)))
         now_closed = _any_closed(c_closed)
         if toggled and now_closed:
             h = min(h, _first_contact_step(v_close, H_START * h_contact, h_contact, gap_tol))

@@ -1,7 +1,15 @@
-"""Integrator settings: Newmark average acceleration (default) or HHT-α, and step control."""
+"""Integrator settings: the method of the open phase (Dormand-Prince 5(4) or Newmark/HHT-α; the
+contact phase is always Newmark/HHT-α) and step control."""
 
 import math
 from dataclasses import dataclass
+
+
+METHODS = ("newmark", "dp5")
+"""The integration methods of the open phase (see :class:`Integrator`)."""
+DEFAULT_RTOL = {"newmark": 1e-5, "dp5": 1e-5}
+"""Each method's default rtol: every peak within 1e-3 of a converged run
+(``benchmarks/peak_accuracy.py`` measures it)."""
 
 
 @dataclass(frozen=True)
@@ -10,11 +18,18 @@ class Integrator:
 
     Parameters
     ----------
+    method : str
+        "newmark": implicit Newmark/HHT-α throughout (second order). "dp5": while every gap is
+        open, the building by the explicit Dormand-Prince 5(4) pair and the walls exactly
+        (:mod:`femoat.integration.explicit`); while a contact is closed, Newmark/HHT-α as in
+        "newmark". Both locate contact events and land on element kinks the same way.
     alpha : float
         HHT-α parameter in [−1/3, 0]; 0 is Newmark's average acceleration (no numerical
         damping). β = (1−α)²/4 and γ = (1−2α)/2.
-    rtol : float
-        Accuracy knob [-]: the local error of a step (Zienkiewicz-Xie estimate) is kept below
+    rtol : float or None
+        Accuracy knob [-]; None takes the method's default (:data:`DEFAULT_RTOL`). The local
+        error of a step (Zienkiewicz-Xie estimate for Newmark, the embedded fourth-order
+        solution's for "dp5") is kept below
         rtol × the DOF's scale: a story's drift against its yield drift, the base mat and the
         walls against the gap while all gaps are open and against δ_me while a contact is
         closed [in], and the building's accelerations against 0.15 × the record's peak ground
@@ -39,8 +54,9 @@ class Integrator:
         Keep every k-th step of the open phase in the output (contact steps are always kept).
     """
 
+    method: str = "newmark"
     alpha: float = 0.0
-    rtol: float = 1e-5
+    rtol: float | None = None
     max_step: float | None = None
     min_step: float = 1e-10
     newton_tol: float = 1e-10
@@ -49,6 +65,11 @@ class Integrator:
     record_every: int = 1
 
     def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"method = {self.method!r}: choose one of {METHODS}.")
+        if self.rtol is None:
+            # a frozen dataclass fills its own default here (the only field resolved late)
+            object.__setattr__(self, "rtol", DEFAULT_RTOL[self.method])
         if not (-1.0 / 3.0 - 1e-12 <= self.alpha <= 0.0):
             raise ValueError(f"alpha = {self.alpha!r} must be in [-1/3, 0] (HHT-α).")
         if not (math.isfinite(self.rtol) and 0 < self.rtol < 0.1):

@@ -6,6 +6,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from femoat.integration import explicit as ex
 from femoat.integration import kernel as kn
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
 from femoat.integration.settings import Integrator
@@ -38,6 +39,9 @@ class RawHistory:
     """First time [s] each limit of ``limits`` was exceeded (NaN: never)."""
     stopped_at_limit: bool
 
+
+METHOD_CODES = {"newmark": kn.METHOD_NEWMARK, "dp5": kn.METHOD_DP5}
+"""The kernel's code of each :class:`~femoat.integration.settings.Integrator` method."""
 
 CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
@@ -127,12 +131,17 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             raise ValueError(f"limits must hold 2 x {nel + 2 * ncon} positive bounds (elements, "
                              "wall displacements, contact forces; inf for none).")
         limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
-    iopt = np.array([integ.max_newton, integ.record_every, _uncoupled_size(packed, lazy),
-                     limit_mode, packed.n_struct], dtype=np.int64)
+    n_explicit = _uncoupled_size(packed, True)
+    iopt = np.zeros(kn.N_IOPT, dtype=np.int64)
+    iopt[kn.I_MAXIT], iopt[kn.I_RECORD_EVERY] = integ.max_newton, integ.record_every
+    iopt[kn.I_N_COUPLED], iopt[kn.I_LIMITS] = _uncoupled_size(packed, lazy), limit_mode
+    iopt[kn.I_N_STRUCT], iopt[kn.I_N_EXPLICIT] = packed.n_struct, n_explicit
+    iopt[kn.I_METHOD] = METHOD_CODES[integ.method]
 
     model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.r, ag=ag, el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
-                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P)
+                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
+                  Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
     # working copies of states (the packed model stays reusable)
     state = State(t=np.zeros(1), h=np.array([fopt[kn.F_HMAX]]), ag_now=np.zeros(1), u=u, v=v,
                   a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(), el_f=np.zeros(nel),
@@ -145,7 +154,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                         err_ref=err_ref, scale_accel=scale_accel, limits=limits)
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
-                ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon))
+                ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
+                kv=np.zeros((ex.N_STAGES, n)), ka=np.zeros((ex.N_STAGES, n)),
+                kf=np.zeros((ex.N_STAGES, nel)), eu=np.zeros(n), ev=np.zeros(n),
+                de=np.zeros(kn.N_ENERGY), dW=np.zeros(nel),
+                wexp=np.zeros((n, 3 * ex.WALL_STATES)), wexp_h=np.zeros(n),
+                wscratch=np.zeros((4, ex.WALL_STATES, ex.WALL_STATES)))
 
     # initial equilibrium: M·a0 = p0 − F(u0, v0)
     ag0 = kern.ground_accel(ag, dt_rec, 0.0)
@@ -354,11 +368,19 @@ def _grow(rec, cap):
     return Recorder(*out)
 
 
+def _quadratic(x, A):
+    """xᵀ·A·x, correctly rounded sum of its terms: the same bits on every machine (numpy's
+    matrix products take machine-dependent SIMD paths and differ in the last bit)."""
+    n = len(x)
+    return math.fsum(float(x[i]) * float(A[i, j]) * float(x[j]) for i in range(n)
+                     for j in range(n) if A[i, j] != 0.0)
+
+
 def _initial_energy(kern, packed, u, v):
     """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
     material_commit, material_recoverable_energy = (kern.material_commit,
                                                     kern.material_recoverable_energy)
-    e = 0.5 * v @ packed.M @ v + 0.5 * u @ packed.K @ u
+    e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
     for k in range(packed.el_code.size):
         i, j = packed.el_i[k], packed.el_j[k]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -371,8 +393,8 @@ def _initial_energy(kern, packed, u, v):
 def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
     contact_stored_energy = kern.contact_stored_energy
     material_recoverable_energy = kern.material_recoverable_energy
-    kinetic = 0.5 * v @ packed.M @ v
-    linear_strain = 0.5 * u @ packed.K @ u
+    kinetic = 0.5 * _quadratic(v, packed.M)
+    linear_strain = 0.5 * _quadratic(u, packed.K)
     el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])
                        for e in range(packed.el_code.size)])
     c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
@@ -384,11 +406,11 @@ def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_i
         initial=e_initial,
         input=float(energy[kn.E_INPUT]),
         kinetic=float(kinetic),
-        recoverable=float(linear_strain + el_rec.sum() + c_rec.sum()),
-        hysteretic=float(el_diss[sto].sum()),
-        friction=float(el_diss[iso].sum()),
+        recoverable=math.fsum([linear_strain, *el_rec, *c_rec]),
+        hysteretic=math.fsum(el_diss[sto]),
+        friction=math.fsum(el_diss[iso]),
         viscous=float(energy[kn.E_VISCOUS]),
-        contact=float((c_W - c_rec).sum()),
+        contact=math.fsum(c_W - c_rec),
     )
     accounted = sum(out[k] for k in ("kinetic", "recoverable", "hysteretic", "friction",
                                      "viscous", "contact"))

@@ -1,0 +1,332 @@
+"""The open phase's step: Dormand-Prince 5(4) for the building, the walls exactly.
+
+While every gap is open the building (base mat and floors) is not stiff: its fastest mode is a
+story mode of a few hundred rad/s at most, against record samples a few ms apart. An explicit
+Runge-Kutta pair of order five then takes about one step per sample where the second-order
+Newmark step needs several. The walls are different: a wall's modal DOF is a heavily damped
+oscillator (the paper's SDOF walls decay at c/m ≈ 4,000-5,000 1/s), far too stiff for an explicit
+step; but while every gap is open it is a linear oscillator driven by the ground alone,
+uncoupled from the building, so it is advanced exactly (the matrix exponential of its
+first-order form, with the ground acceleration linear inside the step).
+
+The step (:func:`explicit_step`), for the building DOFs i < nb (``I_N_EXPLICIT``):
+
+* stages k_s = (v_s, a_s) of y = (u, v), a_s = M⁻¹·(−r·a_g(t + c_s·h) − F(u_s, v_s)) with every
+  element evaluated from its state committed at the step's start (no branch change inside a
+  step: a step that crosses a kink is shortened onto it by the driver, as with Newmark);
+* the fifth-order solution (Dormand & Prince 1980; local extrapolation), first same as last:
+  the seventh stage is the acceleration at the step's end, the next step's first;
+* the error of the embedded fourth-order solution, measured as Newmark's is: each DOF's
+  displacement error in its own coordinate (a floor against the floor below) against
+  rtol·scale, and each DOF's acceleration error M⁻¹·(K_T·e_u + C_T·e_v) against rtol·scale_accel;
+* energies by the method's own quadrature (the fifth-order weights on the stages' powers), so
+  the energy balance is as accurate as the solution.
+
+The ground acceleration is linear inside a step because steps end on record samples (the
+driver's :func:`~femoat.integration.kernel._step_end`).
+
+Units: kip, in, s.
+"""
+
+from pathlib import Path
+
+import numpy as np
+
+from femoat.jit import njit
+from femoat.numba_cache import drop_stale_cache
+
+_PKG = Path(__file__).resolve().parent.parent
+drop_stale_cache(__file__, [_PKG / "integration" / "forces.py",
+                            _PKG / "integration" / "options.py",
+                            *sorted((_PKG / "contact").glob("*.py")),
+                            *sorted((_PKG / "structure" / "materials").glob("*.py"))])
+
+from femoat.integration.forces import _internal_force  # noqa: E402
+from femoat.integration.options import E_INPUT, E_VISCOUS, F_RTOL, I_N_EXPLICIT  # noqa: E402
+
+# ---- the Dormand-Prince 5(4) tableau -------------------------------------------------------
+
+DP_C = np.array([0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0])
+DP_A = np.array([
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
+    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
+    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+])
+"""Stage coefficients a_sj (row s, j < s); the last row is the fifth-order weights b."""
+DP_E = np.array([71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0,
+                 22.0 / 525.0, -1.0 / 40.0])
+"""b − b̂: the fifth- minus the embedded fourth-order weights (the error estimate)."""
+N_STAGES = 7
+
+ORDER = 5
+"""Order of the solution the step keeps."""
+ERROR_EXPONENT = -1.0 / 5.0
+"""h ∝ err^(−1/5): the embedded estimate is O(h⁵)."""
+SAFETY = 0.9
+SHRINK_MIN = 0.2
+GROW_MAX = 5.0
+"""Largest factor a step grows by after an accepted one (steps never pass a record sample)."""
+
+
+@njit(cache=True, inline="always")
+def step_factor(err):
+    """Factor of the next step from the scaled error ``err`` (1 = at the tolerance)."""
+    if err < 1e-30:
+        return GROW_MAX
+    return min(GROW_MAX, max(SHRINK_MIN, SAFETY * err ** ERROR_EXPONENT))
+
+
+# ---- the walls: exact linear propagation ------------------------------------------------------
+
+WALL_STATES = 5
+"""A wall DOF's first-order form: (u, v, ∫u, p, ṗ), p the ground load −r·a_g, linear in a step."""
+
+
+@njit(cache=True)
+def _expm(A, out, T, S):
+    """out = exp(A) of a small square matrix: scaling and squaring of a Taylor series (scaled
+    to a norm ≤ 1/4, 14 terms: truncation below 1e-16); T and S are scratch of A's shape."""
+    n = A.shape[0]
+    norm = 0.0
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += abs(A[i, j])
+        norm = max(norm, s)
+    squarings = 0
+    while norm > 0.25 and squarings < 60:
+        norm *= 0.5
+        squarings += 1
+    scale = 0.5 ** squarings
+    for i in range(n):
+        for j in range(n):
+            T[i, j] = 1.0 if i == j else 0.0
+            out[i, j] = T[i, j]
+    for k in range(1, 15):
+        for i in range(n):
+            for j in range(n):
+                s = 0.0
+                for m in range(n):
+                    s += T[i, m] * A[m, j]
+                S[i, j] = s * scale / k
+        for i in range(n):
+            for j in range(n):
+                T[i, j] = S[i, j]
+                out[i, j] += S[i, j]
+    for _ in range(squarings):
+        for i in range(n):
+            for j in range(n):
+                s = 0.0
+                for m in range(n):
+                    s += out[i, m] * out[m, j]
+                S[i, j] = s
+        for i in range(n):
+            for j in range(n):
+                out[i, j] = S[i, j]
+
+
+@njit(cache=True)
+def wall_propagator(m, c, k, h, row, scratch):
+    """The first three rows of exp(Ā·h) of a wall DOF (mass m [kip·s²/in], damping c
+    [kip·s/in], stiffness k [kip/in]) into ``row`` (15 values: u, v, ∫u from (u₀, v₀, 0, p₀, ṗ));
+    ``scratch`` holds four 5×5 matrices."""
+    A, E, T, S = scratch[0], scratch[1], scratch[2], scratch[3]
+    for i in range(WALL_STATES):
+        for j in range(WALL_STATES):
+            A[i, j] = 0.0
+    A[0, 1] = h
+    A[1, 0] = -k / m * h
+    A[1, 1] = -c / m * h
+    A[1, 3] = h / m
+    A[2, 0] = h
+    A[3, 4] = h
+    _expm(A, E, T, S)
+    for i in range(3):
+        for j in range(WALL_STATES):
+            row[i * WALL_STATES + j] = E[i, j]
+
+
+@njit(cache=True, inline="always")
+def _walls_exact(hh, ag0, ag1, nb, model, state, work):
+    """Advance the wall DOFs i ≥ nb exactly over the step (into ``work.u``, ``work.v``,
+    ``work.a``, ``work.F``) and add their input and viscous energy to ``work.de``."""
+    M, C, K, r = model.M, model.C, model.K, model.r
+    u, v = state.u, state.v
+    for i in range(nb, u.size):
+        row = work.wexp[i]
+        # steps between record samples differ in their last bits (sample times are products
+        # k·dt): reuse the propagator of a step within 1e-9 of this one (the wall then moves
+        # for a time off by at most 1e-9·h, an error of |v|·1e-9·h, far below gap_tol)
+        if abs(work.wexp_h[i] - hh) > 1e-9 * hh:
+            wall_propagator(M[i, i], C[i, i], K[i, i], hh, row, work.wscratch)
+            work.wexp_h[i] = hh
+        p0 = -r[i] * ag0
+        p1 = -r[i] * ag1
+        dp = (p1 - p0) / hh
+        u1 = row[0] * u[i] + row[1] * v[i] + row[3] * p0 + row[4] * dp
+        v1 = row[5] * u[i] + row[6] * v[i] + row[8] * p0 + row[9] * dp
+        iu = row[10] * u[i] + row[11] * v[i] + row[13] * p0 + row[14] * dp
+        work.u[i] = u1
+        work.v[i] = v1
+        f1 = C[i, i] * v1 + K[i, i] * u1
+        work.F[i] = f1
+        work.a[i] = (p1 - f1) / M[i, i]
+        # ∫p·du = p₁u₁ − p₀u₀ − ṗ·∫u (p linear); what it put in and the wall does not keep in
+        # kinetic and strain energy, its dashpot took
+        w_in = p1 * u1 - p0 * u[i] - dp * iu
+        stored = 0.5 * (M[i, i] * (v1 * v1 - v[i] * v[i]) + K[i, i] * (u1 * u1 - u[i] * u[i]))
+        work.de[E_INPUT] += w_in
+        work.de[E_VISCOUS] += w_in - stored
+
+
+# ---- the building: Dormand-Prince 5(4) --------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _stages(hh, ag0, ag1, nb, model, state, work):
+    """The seven stages (``work.kv``, ``work.ka``; element forces ``work.kf``); after it
+    ``work.u``, ``work.v`` (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F``
+    and the tangents ``KT``, ``CT`` its forces. False when a stage is not finite."""
+    Minv, r = model.Minv, model.r
+    kv, ka, kf = work.kv, work.ka, work.kf
+    u0, v0 = state.u, state.v
+    n = u0.size
+    for i in range(nb):
+        kv[0, i] = v0[i]
+        ka[0, i] = state.a[i]
+    for e in range(state.el_f.size):
+        kf[0, e] = state.el_f[e]
+    for i in range(nb, n):
+        work.u[i] = u0[i]
+        work.v[i] = v0[i]
+    for s in range(1, N_STAGES):
+        for i in range(nb):
+            su = 0.0
+            sv = 0.0
+            for j in range(s):
+                aij = DP_A[s, j]
+                su += aij * kv[j, i]
+                sv += aij * ka[j, i]
+            work.u[i] = u0[i] + hh * su
+            work.v[i] = v0[i] + hh * sv
+        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
+                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT,
+                        s == N_STAGES - 1, nb)
+        ag = ag0 + DP_C[s] * (ag1 - ag0)
+        for i in range(nb):
+            acc = 0.0
+            for j in range(nb):
+                acc += Minv[i, j] * (-r[j] * ag - work.F[j])
+            if not np.isfinite(acc):
+                return False
+            ka[s, i] = acc
+            kv[s, i] = work.v[i]
+        for e in range(kf.shape[1]):
+            kf[s, e] = work.ef[e]
+    for i in range(nb):
+        work.a[i] = ka[N_STAGES - 1, i]
+    return True
+
+
+@njit(cache=True, inline="always")
+def _building_energy(hh, ag0, ag1, nb, model, work):
+    """Input, viscous and element work of the building over the step by the fifth-order
+    quadrature of the stages' powers (into ``work.de`` and ``work.dW``)."""
+    C, r = model.C, model.r
+    el_i, el_j = model.el_i, model.el_j
+    kv, kf = work.kv, work.kf
+    for e in range(work.dW.size):
+        work.dW[e] = 0.0
+    for s in range(N_STAGES - 1):
+        b = DP_A[N_STAGES - 1, s]
+        if b == 0.0:
+            continue
+        ag = ag0 + DP_C[s] * (ag1 - ag0)
+        p_in = 0.0
+        p_visc = 0.0
+        for i in range(nb):
+            p_in += -r[i] * ag * kv[s, i]
+            cv = 0.0
+            for j in range(nb):
+                cv += C[i, j] * kv[s, j]
+            p_visc += cv * kv[s, i]
+        work.de[E_INPUT] += hh * b * p_in
+        work.de[E_VISCOUS] += hh * b * p_visc
+        for e in range(work.dW.size):
+            i, j = el_i[e], el_j[e]
+            rate = kv[s, i] - (kv[s, j] if j >= 0 else 0.0)
+            work.dW[e] += hh * b * kf[s, e] * rate
+
+
+@njit(cache=True, inline="always")
+def _error(hh, nb, model, settings, work):
+    """The scaled error of the embedded fourth-order solution (1 = at the tolerance)."""
+    rtol = settings.fopt[F_RTOL]
+    scale, err_ref, s_acc = settings.scale_open, settings.err_ref, settings.scale_accel
+    kv, ka, eu, ev = work.kv, work.ka, work.eu, work.ev
+    for i in range(nb):
+        su = 0.0
+        sv = 0.0
+        for k in range(N_STAGES):
+            su += DP_E[k] * kv[k, i]
+            sv += DP_E[k] * ka[k, i]
+        eu[i] = hh * su
+        ev[i] = hh * sv
+    err = 0.0
+    for i in range(nb):
+        d = eu[i]
+        j = err_ref[i]
+        if j >= 0:
+            d -= eu[j]
+        q = abs(d) / (rtol * scale[i])
+        if q > err:
+            err = q
+    # the acceleration error M⁻¹·(K_T·e_u + C_T·e_v) (the force error first, into work.b)
+    Minv, KT, CT, df = model.Minv, work.KT, work.CT, work.b
+    for j in range(nb):
+        fj = 0.0
+        for m in range(nb):
+            fj += KT[j, m] * eu[m] + CT[j, m] * ev[m]
+        df[j] = fj
+    for i in range(nb):
+        if not np.isfinite(s_acc[i]):
+            continue
+        da = 0.0
+        for j in range(nb):
+            da += Minv[i, j] * df[j]
+        q = abs(da) / (rtol * s_acc[i])
+        if q > err:
+            err = q
+    return err
+
+
+@njit(cache=True, inline="always")
+def explicit_step(hh, ag1, model, state, settings, work):
+    """The trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its end) while
+    every gap is open: ``work`` holds the end state, its forces, the contacts' indentations and
+    the step's energy increments (``de``, ``dW``). Returns the scaled error (inf: a stage was
+    not finite, the step must shrink)."""
+    nb = settings.iopt[I_N_EXPLICIT]
+    ag0 = state.ag_now[0]
+    work.de[E_INPUT] = 0.0
+    work.de[E_VISCOUS] = 0.0
+    if not _stages(hh, ag0, ag1, nb, model, state, work):
+        return np.inf
+    _walls_exact(hh, ag0, ag1, nb, model, state, work)
+    _building_energy(hh, ag0, ag1, nb, model, work)
+    # the contacts' indentations at the end (every gap open: no force)
+    c_B, c_gap = model.c_B, model.c_gap
+    for c in range(c_gap.size):
+        d = -c_gap[c]
+        for i in range(work.u.size):
+            d += c_B[c, i] * work.u[i]
+        work.cd[c] = d
+        work.cf[c] = 0.0
+    for i in range(work.u.size):
+        if not (np.isfinite(work.u[i]) and np.isfinite(work.v[i])):
+            return np.inf
+    return _error(hh, nb, model, settings, work)
