@@ -4,9 +4,11 @@ The implicit step joins its end states by the cubic Hermite interpolant of displ
 velocity (the same interpolant the solver's event search uses) and by a linear acceleration
 (Newmark's average-acceleration step: v₁ = v₀ + h·(a₀ + a₁)/2). A crest between two step ends
 is read from those interpolants: displacements and drifts from the cubic's stationary points,
-velocities from the parabola ∫a. Accelerations are linear inside a step, so their peaks are at
-step ends. With ``Integrator(record_every=k > 1)`` the interpolants span k steps and are an
-approximation.
+velocities from the parabola ∫a. Accelerations are linear inside a Newmark step, so their peaks are at
+step ends. The explicit fifth-order step of the open phase (``Integrator(method="dp5")``) is
+smooth inside: its accelerations are read from the quintic Hermite interpolant of (u, v, a) at
+the step's ends (:func:`quintic_accel_abs_max`). With ``Integrator(record_every=k > 1)`` the
+interpolants span k steps and are an approximation.
 """
 
 import numpy as np
@@ -52,6 +54,52 @@ def hermite_abs_max(t, x, v):
                       + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * v1)
                 peak[k] = np.fmax(peak[k], np.nanmax(np.abs(xs), initial=0.0))
     return float(peak[0]) if one else [float(p) for p in peak]
+
+
+def quintic_accel_abs_max(t, u, v, a, ag, smooth):
+    """max |a(t) + a_g(t)| per column, a(t) the second derivative of the quintic Hermite
+    interpolant through (u, u̇ = v, ü = a) at both ends of every interval marked ``smooth``
+    (elsewhere only the samples count), a_g linear in an interval.
+
+    t [s] (m samples); u [in], v [in/s], a [in/s²] of shape (m, k); ag [in/s²] (m,); smooth a
+    boolean (m − 1,). Returns k floats [in/s²].
+    """
+    t = np.asarray(t, dtype=float)
+    u, v, a = (np.asarray(q, dtype=float) for q in (u, v, a))
+    ag = np.asarray(ag, dtype=float)
+    total = a + ag[:, None]
+    peak = np.abs(total).max(axis=0) if total.shape[0] else np.zeros(total.shape[1])
+    h = np.diff(t)
+    ok = np.asarray(smooth, dtype=bool) & (h > 0.0)
+    i = np.flatnonzero(ok)
+    if i.size == 0:
+        return [float(p) for p in peak]
+    hk = h[i][:, None]
+    dag = (ag[i + 1] - ag[i])[:, None]
+    # x(θ) = Σ c_k θ^k on θ ∈ [0, 1]: c0..c2 from the start, c3..c5 from the end's residuals
+    c1, c2 = hk * v[i], 0.5 * hk * hk * a[i]
+    r0 = u[i + 1] - u[i] - c1 - c2
+    r1 = hk * v[i + 1] - c1 - 2.0 * c2
+    r2 = hk * hk * a[i + 1] - 2.0 * c2
+    c3 = 10.0 * r0 - 4.0 * r1 + 0.5 * r2
+    c4 = -15.0 * r0 + 7.0 * r1 - r2
+    c5 = 6.0 * r0 - 3.0 * r1 + 0.5 * r2
+    # a(θ) + a_g(θ) = α0 + α1·θ + α2·θ² + α3·θ³
+    h2 = hk * hk
+    al0 = a[i] + ag[i][:, None]
+    al1, al2, al3 = 6.0 * c3 / h2 + dag, 12.0 * c4 / h2, 20.0 * c5 / h2
+    # an interval too short for its coefficients (round-off of u divided by h² would exceed a
+    # millionth of the accelerations) keeps its end values: it is a landing step of
+    # nanoseconds, in which the acceleration cannot turn
+    eps = np.finfo(float).eps
+    roundoff = 120.0 * eps * (np.abs(u[i]) + np.abs(u[i + 1])) / h2
+    usable = roundoff <= 1e-6 * (np.abs(al0) + np.abs(a[i + 1]) + 1.0)
+    for k in range(total.shape[1]):
+        for s in _roots_in_unit_interval(3.0 * al3[:, k], 2.0 * al2[:, k], al1[:, k]):
+            s = np.where(usable[:, k], s, np.nan)
+            vals = al0[:, k] + s * (al1[:, k] + s * (al2[:, k] + s * al3[:, k]))
+            peak[k] = np.fmax(peak[k], np.nanmax(np.abs(vals), initial=0.0))
+    return [float(p) for p in peak]
 
 
 def linear_accel_velocity_abs_max(t, v, a):

@@ -56,7 +56,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
                  progress=progress, backend=backend, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
-                duration=float(duration), rtol=integ.rtol, alpha=integ.alpha,
+                duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],
                 wall_damping=[getattr(w.wall, "damping_source", "modal") for w in model.walls])
     result = RunResult.from_history(hist, packed, info)

@@ -32,6 +32,6 @@ Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact"
                                    "scale_accel", "limits"])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",
                            "kv", "ka", "kf", "eu", "ev", "de", "dW", "wexp", "wexp_h",
-                           "wscratch"])
+                           "wscratch", "s_tmp"])
 Recorder = namedtuple("Recorder", ["t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv",
                                    "closed"])

@@ -82,9 +82,6 @@ def step_factor(err):
 
 # ---- the walls: exact linear propagation ------------------------------------------------------
 
-WALL_STATES = 5
-"""A wall DOF's first-order form: (u, v, ∫u, p, ṗ), p the ground load −r·a_g, linear in a step."""
-
 
 @njit(cache=True)
 def _expm(A, out, T, S):
@@ -93,10 +90,10 @@ def _expm(A, out, T, S):
     n = A.shape[0]
     norm = 0.0
     for i in range(n):
-        s = 0.0
+        row = 0.0
         for j in range(n):
-            s += abs(A[i, j])
-        norm = max(norm, s)
+            row += abs(A[i, j])
+        norm = max(norm, row)
     squarings = 0
     while norm > 0.25 and squarings < 60:
         norm *= 0.5
@@ -109,10 +106,10 @@ def _expm(A, out, T, S):
     for k in range(1, 15):
         for i in range(n):
             for j in range(n):
-                s = 0.0
+                acc = 0.0
                 for m in range(n):
-                    s += T[i, m] * A[m, j]
-                S[i, j] = s * scale / k
+                    acc += T[i, m] * A[m, j]
+                S[i, j] = acc * scale / k
         for i in range(n):
             for j in range(n):
                 T[i, j] = S[i, j]
@@ -120,10 +117,10 @@ def _expm(A, out, T, S):
     for _ in range(squarings):
         for i in range(n):
             for j in range(n):
-                s = 0.0
+                acc = 0.0
                 for m in range(n):
-                    s += out[i, m] * out[m, j]
-                S[i, j] = s
+                    acc += out[i, m] * out[m, j]
+                S[i, j] = acc
         for i in range(n):
             for j in range(n):
                 out[i, j] = S[i, j]
@@ -131,54 +128,58 @@ def _expm(A, out, T, S):
 
 @njit(cache=True)
 def wall_propagator(m, c, k, h, row, scratch):
-    """The first three rows of exp(Ā·h) of a wall DOF (mass m [kip·s²/in], damping c
-    [kip·s/in], stiffness k [kip/in]) into ``row`` (15 values: u, v, ∫u from (u₀, v₀, 0, p₀, ṗ));
-    ``scratch`` holds four 5×5 matrices."""
+    """exp(A·h) of a wall DOF's free vibration, A = [[0, 1], [−k/m, −c/m]] (mass m
+    [kip·s²/in], damping c [kip·s/in], stiffness k [kip/in]), into ``row`` (4 values, row
+    by row); ``scratch`` holds four 2×2 matrices."""
     A, E, T, S = scratch[0], scratch[1], scratch[2], scratch[3]
-    for i in range(WALL_STATES):
-        for j in range(WALL_STATES):
-            A[i, j] = 0.0
+    A[0, 0] = 0.0
     A[0, 1] = h
     A[1, 0] = -k / m * h
     A[1, 1] = -c / m * h
-    A[1, 3] = h / m
-    A[2, 0] = h
-    A[3, 4] = h
     _expm(A, E, T, S)
-    for i in range(3):
-        for j in range(WALL_STATES):
-            row[i * WALL_STATES + j] = E[i, j]
+    row[0], row[1], row[2], row[3] = E[0, 0], E[0, 1], E[1, 0], E[1, 1]
 
 
 @njit(cache=True, inline="always")
 def _walls_exact(hh, ag0, ag1, nb, model, state, work):
     """Advance the wall DOFs i ≥ nb exactly over the step (into ``work.u``, ``work.v``,
-    ``work.a``, ``work.F``) and add their input and viscous energy to ``work.de``."""
+    ``work.a``, ``work.F``) and add their input and viscous energy to ``work.de``.
+
+    m·ü + c·u̇ + k·u = p₀ + ṗ·τ (the ground load −r·a_g, linear in the step) has the particular
+    solution u_p = α + β·τ (β = ṗ/k, α = (p₀ − c·β)/k); the rest w = u − u_p vibrates freely,
+    w(h) = exp(A·h)·w(0), and ∫w dτ = −[m·Δẇ + c·Δw]/k (the equation integrated once)."""
     M, C, K, r = model.M, model.C, model.K, model.r
     u, v = state.u, state.v
     for i in range(nb, u.size):
         row = work.wexp[i]
+        m, c, k = M[i, i], C[i, i], K[i, i]
         # steps between record samples differ in their last bits (sample times are products
         # k·dt): reuse the propagator of a step within 1e-9 of this one (the wall then moves
         # for a time off by at most 1e-9·h, an error of |v|·1e-9·h, far below gap_tol)
         if abs(work.wexp_h[i] - hh) > 1e-9 * hh:
-            wall_propagator(M[i, i], C[i, i], K[i, i], hh, row, work.wscratch)
+            wall_propagator(m, c, k, hh, row, work.wscratch)
             work.wexp_h[i] = hh
         p0 = -r[i] * ag0
         p1 = -r[i] * ag1
         dp = (p1 - p0) / hh
-        u1 = row[0] * u[i] + row[1] * v[i] + row[3] * p0 + row[4] * dp
-        v1 = row[5] * u[i] + row[6] * v[i] + row[8] * p0 + row[9] * dp
-        iu = row[10] * u[i] + row[11] * v[i] + row[13] * p0 + row[14] * dp
+        beta = dp / k
+        alpha = (p0 - c * beta) / k
+        w0 = u[i] - alpha
+        wd0 = v[i] - beta
+        w1 = row[0] * w0 + row[1] * wd0
+        wd1 = row[2] * w0 + row[3] * wd0
+        u1 = w1 + alpha + beta * hh
+        v1 = wd1 + beta
+        iu = alpha * hh + 0.5 * beta * hh * hh - (m * (wd1 - wd0) + c * (w1 - w0)) / k
         work.u[i] = u1
         work.v[i] = v1
-        f1 = C[i, i] * v1 + K[i, i] * u1
+        f1 = c * v1 + k * u1
         work.F[i] = f1
-        work.a[i] = (p1 - f1) / M[i, i]
+        work.a[i] = (p1 - f1) / m
         # ∫p·du = p₁u₁ − p₀u₀ − ṗ·∫u (p linear); what it put in and the wall does not keep in
         # kinetic and strain energy, its dashpot took
         w_in = p1 * u1 - p0 * u[i] - dp * iu
-        stored = 0.5 * (M[i, i] * (v1 * v1 - v[i] * v[i]) + K[i, i] * (u1 * u1 - u[i] * u[i]))
+        stored = 0.5 * (m * (v1 * v1 - v[i] * v[i]) + k * (u1 * u1 - u[i] * u[i]))
         work.de[E_INPUT] += w_in
         work.de[E_VISCOUS] += w_in - stored
 

@@ -615,6 +615,51 @@ def find_kink(hh, model, state, work):
     return theta
 
 
+@njit(cache=True, inline="always")
+def find_turn(hh, model, state, work):
+    """Fraction θ of the trial step just past the earliest turning point of an element's
+    deformation inside it where the element changes branch (2: none).
+
+    Every stage of a step is evaluated from the state committed at its start, as if the
+    deformation went straight there; a reversal inside the step (a sliding bearing or a
+    yielding story turning back, which unloads it) is then not seen, and at a fifth-order
+    step's length that costs the order. A turning point is where the element's deformation
+    rate crosses zero along the cubic Hermite interpolant of the rate (its values and the
+    accelerations at the step's ends); it is a kink when the material, committed there, has a
+    tangent for the way back that differs by more than KINK_RATIO from the tangent it reached.
+    """
+    theta = 2.0
+    el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
+    s_tmp = work.s_tmp
+    for e in range(el_code.size):
+        dv0 = _element_rates(e, model, state.v)
+        dv1 = _element_rates(e, model, work.v)
+        if dv0 * dv1 >= 0.0:
+            continue
+        da0 = _element_rates(e, model, state.a)
+        da1 = _element_rates(e, model, work.a)
+        th = _crossing(dv0, da0, dv1, da1, hh)
+        if th <= KINK_RESOLUTION or th >= 1.0:
+            continue
+        d, _ = _hermite(th, hh, state.el_d[e], dv0, work.ed[e], dv1)
+        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0)
+        for k in range(s_tmp.size):
+            s_tmp[k] = el_S[e, k]
+        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0)
+        back = d - TURN_PROBE * (abs(d) + abs(state.el_d[e]) + 1e-6) * (1.0 if dv0 > 0.0 else -1.0)
+        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0)
+        if abs(k_back - k_on) <= KINK_RATIO * max(abs(k_on), abs(k_back)):
+            continue
+        th = min(1.0, th + KINK_RESOLUTION)
+        if th < theta:
+            theta = th
+    return theta
+
+
+TURN_PROBE = 1e-9
+"""A turning point's way back is probed this fraction of the deformation's size back from it."""
+
+
 # ---- accepting and recording a step -----------------------------------------------------------
 
 
@@ -819,6 +864,8 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             continue
         if theta > 1.0 and not shortened:
             theta_k = find_kink(hh, model, state, work)
+            if explicit_now:
+                theta_k = min(theta_k, find_turn(hh, model, state, work))
             if theta_k < 1.0 and hh * theta_k >= hmin:
                 stats[S_REJECT_ERR] += 1
                 h = hh * theta_k

@@ -158,8 +158,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 kv=np.zeros((ex.N_STAGES, n)), ka=np.zeros((ex.N_STAGES, n)),
                 kf=np.zeros((ex.N_STAGES, nel)), eu=np.zeros(n), ev=np.zeros(n),
                 de=np.zeros(kn.N_ENERGY), dW=np.zeros(nel),
-                wexp=np.zeros((n, 3 * ex.WALL_STATES)), wexp_h=np.zeros(n),
-                wscratch=np.zeros((4, ex.WALL_STATES, ex.WALL_STATES)))
+                wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
+                s_tmp=np.zeros(packed.el_S.shape[1]))
 
     # initial equilibrium: M·a0 = p0 − F(u0, v0)
     ag0 = kern.ground_accel(ag, dt_rec, 0.0)
