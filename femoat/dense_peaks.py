@@ -94,11 +94,10 @@ def quintic_accel_abs_max(t, u, v, a, ag, smooth):
     eps = np.finfo(float).eps
     roundoff = 120.0 * eps * (np.abs(u[i]) + np.abs(u[i + 1])) / h2
     usable = roundoff <= 1e-6 * (np.abs(al0) + np.abs(a[i + 1]) + 1.0)
-    for k in range(total.shape[1]):
-        for s in _roots_in_unit_interval(3.0 * al3[:, k], 2.0 * al2[:, k], al1[:, k]):
-            s = np.where(usable[:, k], s, np.nan)
-            vals = al0[:, k] + s * (al1[:, k] + s * (al2[:, k] + s * al3[:, k]))
-            peak[k] = np.fmax(peak[k], np.nanmax(np.abs(vals), initial=0.0))
+    for s in _roots_in_unit_interval(3.0 * al3, 2.0 * al2, al1):  # every column at once
+        s = np.where(usable, s, np.nan)
+        vals = np.abs(al0 + s * (al1 + s * (al2 + s * al3)))
+        peak = np.fmax(peak, np.nanmax(vals, axis=0, initial=0.0))
     return [float(p) for p in peak]
 
 

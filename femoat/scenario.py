@@ -51,6 +51,8 @@ Every table and key is optional; omitted values take the defaults of the paper s
     extra_time = 2.0              # [s] of free vibration after the record
 
     [solver]
+    method = "dp5"                # default: fifth order while the gaps are open, Newmark in
+                                  # contact; "newmark": Newmark/HHT-α throughout
     rtol = 1e-5                   # default; every peak within 1e-3 of a converged run
     alpha = 0.0                   # HHT-α
     max_step = 0.0025             # [s] (default: the record's sample interval)
@@ -92,7 +94,7 @@ _KNOWN = {
                  "damping_ratio"},
     "motion": {"source", "path", "dt", "units", "record_set", "record_id", "component", "pga",
                "time_scale", "extra_time", "column", "skip_rows"},
-    "solver": {"rtol", "alpha", "max_step", "min_step", "newton_tol", "max_newton",
+    "solver": {"method", "rtol", "alpha", "max_step", "min_step", "newton_tol", "max_newton",
                "record_every", "contact_steps"},
     "output": {"folder", "figures"},
 }
@@ -250,8 +252,19 @@ def building_from_dict(d):
 
 
 def solver_from_dict(d):
-    """The :class:`~femoat.integration.settings.Integrator` of a ``[solver]`` table."""
-    return _numeric_table(dict(d), Integrator, "[solver]")
+    """The :class:`~femoat.integration.settings.Integrator` of a ``[solver]`` table (numbers,
+    and the method's name)."""
+    from femoat.integration.settings import METHODS
+
+    d = dict(d)
+    method = d.pop("method", None)
+    if method is not None and method not in METHODS:
+        raise ValueError(f"[solver] method = {method!r}: use one of {list(METHODS)}.")
+    integ = _numeric_table(d, Integrator, "[solver]")  # the numbers checked here
+    if method is None:
+        return integ
+    with _in("[solver]"):
+        return Integrator(method=method, **d)  # (the method's own default rtol if none given)
 
 
 def collapse_from_dict(d):

@@ -28,7 +28,7 @@ def linear_building(k_iso=2.0, k_story=42.799, damping=0.0):
 
 def fixed_step(h):
     # rtol at its loosest so the error control never shortens the step: a fixed-step Newmark.
-    return Integrator(rtol=0.099, max_step=h)
+    return Integrator(method="newmark", rtol=0.099, max_step=h)
 
 
 def test_sdof_free_vibration_closed_form():

@@ -89,13 +89,13 @@ def _energy_floor(res, law, rtol):
     return n_events * 0.5 * law.params.k_eff * (rtol * law.params.delta_me) ** 2
 
 
-def _check_run(res, law, rtol):
+def _check_run(res, law, rtol, residual_tol=RESIDUAL_TOL):
     """Finite, closed energy balance, no energy created (see the module docstring)."""
     for name in ("displacement", "velocity", "acceleration", "contact_force", "indentation"):
         assert np.all(np.isfinite(getattr(res, name))), name
     en = res.energy
     assert all(math.isfinite(v) for v in en.values())
-    assert en["residual"] < RESIDUAL_TOL
+    assert en["residual"] < residual_tol
     scale = abs(en["initial"]) + abs(en["input"])
     allowed = _gain_tol(law, rtol) * scale + _energy_floor(res, law, rtol)
     for key in DISSIPATED:
@@ -274,7 +274,11 @@ def test_grazing_at_the_turning_point(kind, eta):
     # η = 1e-3: a real, slow impact (0.14 in/s).
     law = make_law(kind, wall_preset("concrete").contact)
     res = _turning(law, wall_preset("concrete").wall, eta)
-    _check_run(res, law, 1e-4)
+    # Free vibration under a record of one 6 s sample: the fifth-order open phase takes
+    # 0.1-0.15 s steps (13-17 per period) at rtol 1e-5; its energy residual is then its
+    # truncation error (measured 1.1e-4, the amplitude within 2e-5 of the exact one), not the
+    # round-off of Newmark's trapezoidal balance: bounded by 20·rtol here.
+    _check_run(res, law, 1e-4, residual_tol=20 * Integrator().rtol)
     if eta >= 1e-3:
         assert res.peaks["impacts_pos"] >= 1
 

@@ -2,7 +2,7 @@
 
 from pathlib import Path
 
-from femoat.integration.settings import Integrator
+from femoat.integration.settings import DEFAULT_RTOL, METHODS, Integrator
 from femoat.walls.presets import DAMPING_CHOICES
 
 
@@ -21,8 +21,12 @@ def add_parser(sub):
                    help="only the first 4 s of the record (all impacts of the default model)")
     p.add_argument("--calibrate", action="store_true",
                    help="calibrate each damped law to reach e = 0.70 exactly at 10 in/s")
-    p.add_argument("--rtol", type=float, default=Integrator().rtol,
-                   help=f"solver accuracy (local error / DOF scale; default {Integrator().rtol:g})")
+    p.add_argument("--method", default=Integrator().method, choices=METHODS,
+                   help="integration method of the open phase: 'dp5' (fifth order, the "
+                   "default) or 'newmark' (Newmark throughout); contact is always Newmark")
+    p.add_argument("--rtol", type=float, default=None,
+                   help="solver accuracy (local error / DOF scale; default: the method's, "
+                   + ", ".join(f"{m} {r:g}" for m, r in DEFAULT_RTOL.items()) + ")")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
     p.add_argument("--out", type=Path, default=Path("femoat_output/paper"),
                    help="output folder (default: ./femoat_output/paper)")
@@ -34,7 +38,8 @@ def run(args):
     from femoat.report import format_table, summary_rows, write_outputs
 
     runs, motion = run_paper_study(damping=args.damping, quick=args.quick,
-                                   calibrate=args.calibrate, integrator=Integrator(rtol=args.rtol))
+                                   calibrate=args.calibrate, integrator=Integrator(method=args.method,
+                                                                     rtol=args.rtol))
     paths = write_outputs(runs, motion, args.out, args.damping, figures=not args.no_figures)
     print(f"Paper study, C_imp = {args.damping}: {motion.name}, PGA {motion.pga:.2f} g")
     print(format_table(summary_rows(runs)))

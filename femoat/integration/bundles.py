@@ -10,8 +10,8 @@ ahead-of-time module exports (:func:`femoat.integration.kernel.run_chunk` takes 
   see the ``F_*``/``I_*`` indices of :mod:`femoat.integration.kernel`), the error scales and the
   limit states.
 * :class:`Work`: scratch arrays of a step (trial kinematics, forces, tangents, the linear system;
-  for the explicit step of :mod:`femoat.integration.explicit` its stages ``kv``, ``ka``, ``kf``,
-  error ``eu``, ``ev``, energy increments ``de``, ``dW`` and the walls' cached propagators).
+  for the explicit step of :mod:`femoat.integration.explicit` its stages ``kv``, ``ka``,
+  error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators).
 * :class:`Recorder`: the history buffers, one row per recorded step; a channel with zero columns
   is not recorded. A new channel is a new field here, its line in
   :func:`~femoat.integration.kernel.record` and its width in
@@ -31,7 +31,7 @@ State = namedtuple("State", ["t", "h", "ag_now", "u", "v", "a", "F", "el_S", "el
 Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact", "err_ref",
                                    "scale_accel", "limits"])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",
-                           "kv", "ka", "kf", "eu", "ev", "de", "dW", "wexp", "wexp_h",
+                           "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
                            "wscratch", "s_tmp"])
 Recorder = namedtuple("Recorder", ["t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv",
                                    "closed"])

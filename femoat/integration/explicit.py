@@ -19,8 +19,8 @@ The step (:func:`explicit_step`), for the building DOFs i < nb (``I_N_EXPLICIT``
 * the error of the embedded fourth-order solution, measured as Newmark's is: each DOF's
   displacement error in its own coordinate (a floor against the floor below) against
   rtol·scale, and each DOF's acceleration error M⁻¹·(K_T·e_u + C_T·e_v) against rtol·scale_accel;
-* energies by the method's own quadrature (the fifth-order weights on the stages' powers), so
-  the energy balance is as accurate as the solution.
+* input and viscous energies by the method's own quadrature (the fifth-order weights on the
+  stages' powers), so the energy balance is as accurate as the solution.
 
 The ground acceleration is linear inside a step because steps end on record samples (the
 driver's :func:`~femoat.integration.kernel._step_end`).
@@ -189,18 +189,16 @@ def _walls_exact(hh, ag0, ag1, nb, model, state, work):
 
 @njit(cache=True, inline="always")
 def _stages(hh, ag0, ag1, nb, model, state, work):
-    """The seven stages (``work.kv``, ``work.ka``; element forces ``work.kf``); after it
+    """The seven stages (``work.kv``, ``work.ka``); after it
     ``work.u``, ``work.v`` (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F``
     and the tangents ``KT``, ``CT`` its forces. False when a stage is not finite."""
     Minv, r = model.Minv, model.r
-    kv, ka, kf = work.kv, work.ka, work.kf
+    kv, ka = work.kv, work.ka
     u0, v0 = state.u, state.v
     n = u0.size
     for i in range(nb):
         kv[0, i] = v0[i]
         ka[0, i] = state.a[i]
-    for e in range(state.el_f.size):
-        kf[0, e] = state.el_f[e]
     for i in range(nb, n):
         work.u[i] = u0[i]
         work.v[i] = v0[i]
@@ -226,8 +224,6 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
                 return False
             ka[s, i] = acc
             kv[s, i] = work.v[i]
-        for e in range(kf.shape[1]):
-            kf[s, e] = work.ef[e]
     for i in range(nb):
         work.a[i] = ka[N_STAGES - 1, i]
     return True
@@ -235,13 +231,11 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
 
 @njit(cache=True, inline="always")
 def _building_energy(hh, ag0, ag1, nb, model, work):
-    """Input, viscous and element work of the building over the step by the fifth-order
-    quadrature of the stages' powers (into ``work.de`` and ``work.dW``)."""
+    """Input and viscous energy of the building over the step by the fifth-order quadrature of
+    the stages' powers (into ``work.de``). (Element work is the driver's trapezoidal rule: exact
+    on a branch linear in the deformation, and a step never changes branch.)"""
     C, r = model.C, model.r
-    el_i, el_j = model.el_i, model.el_j
-    kv, kf = work.kv, work.kf
-    for e in range(work.dW.size):
-        work.dW[e] = 0.0
+    kv = work.kv
     for s in range(N_STAGES - 1):
         b = DP_A[N_STAGES - 1, s]
         if b == 0.0:
@@ -257,10 +251,6 @@ def _building_energy(hh, ag0, ag1, nb, model, work):
             p_visc += cv * kv[s, i]
         work.de[E_INPUT] += hh * b * p_in
         work.de[E_VISCOUS] += hh * b * p_visc
-        for e in range(work.dW.size):
-            i, j = el_i[e], el_j[e]
-            rate = kv[s, i] - (kv[s, j] if j >= 0 else 0.0)
-            work.dW[e] += hh * b * kf[s, e] * rate
 
 
 @njit(cache=True, inline="always")
@@ -309,7 +299,7 @@ def _error(hh, nb, model, settings, work):
 def explicit_step(hh, ag1, model, state, settings, work):
     """The trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its end) while
     every gap is open: ``work`` holds the end state, its forces, the contacts' indentations and
-    the step's energy increments (``de``, ``dW``). Returns the scaled error (inf: a stage was
+    the step's energy increments (``de``). Returns the scaled error (inf: a stage was
     not finite, the step must shrink)."""
     nb = settings.iopt[I_N_EXPLICIT]
     ag0 = state.ag_now[0]

@@ -529,10 +529,15 @@ H_START = 1e-3
 
 
 @njit(cache=True, inline="always")
-def find_events(hh, model, state, settings, work):
+def find_events(hh, look_inside, model, state, settings, work):
     """(θ, c, c_now): the earliest crossing of δ = 0 inside the trial step at fraction θ of it
     (θ = 2: none) by contact c (a closure, or the separation of an open episode), and c_now ≥ 0
-    a contact whose gap closes in the step while it was already touching at its start."""
+    a contact whose gap closes in the step while it was already touching at its start.
+
+    ``look_inside`` (the long steps of the explicit method): a gap open at both ends of the
+    step may still close inside it, near a turning point of δ; where δ approaches at the start,
+    recedes at the end and its interpolant's crest (from δ, δ̇ and δ̈ at the ends) is positive,
+    the step is shortened to end at the crest, where the ordinary crossing search takes over."""
     gap_tol = settings.fopt[F_GAPTOL]
     c_B, c_closed = model.c_B, state.c_closed
     theta = 2.0
@@ -556,6 +561,19 @@ def find_events(hh, model, state, settings, work):
         elif c_closed[c] and d1 < -gap_tol:
             th = _crossing(d0, dd0, d1, dd1, hh)
             if th < theta:
+                theta = th
+                c_min = c
+        elif look_inside and not c_closed[c] and dd0 > 0.0 and dd1 < 0.0:
+            dda0 = 0.0
+            dda1 = 0.0
+            for i in range(state.a.size):
+                dda0 += c_B[c, i] * state.a[i]
+                dda1 += c_B[c, i] * work.a[i]
+            th = _crossing(dd0, dda0, dd1, dda1, hh)
+            crest, _ = _hermite(th, hh, d0, dd0, d1, dd1)
+            # (a crest within gap_tol of the wall is a touch, not an impact; a crest at the
+            # step's very end is the one the step was already shortened to)
+            if crest > gap_tol and 0.0 < th < min(theta, 1.0 - KINK_RESOLUTION):
                 theta = th
                 c_min = c
     return theta, c_min, event_now
@@ -669,8 +687,9 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
     within gap_tol, the located separation of contact ``landing``), kinematics. Returns
     (an episode opened or closed, the largest approach velocity of the closures).
 
-    Energies: the trapezoidal rule of the Newmark step, or the explicit step's own quadrature
-    (``work.de``, ``work.dW``) when ``explicit_step``."""
+    Energies: input and viscous by the trapezoidal rule of the Newmark step, or the explicit
+    step's own quadrature (``work.de``) when ``explicit_step``; element work by the trapezoidal
+    rule for both (exact on a branch that is linear in the deformation)."""
     C, r, c_B = model.C, model.r, model.c_B
     u, v, a, Fn = state.u, state.v, state.a, state.F
     energy = state.energy
@@ -693,10 +712,9 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
     el_i, el_j = model.el_i, model.el_j
     el_f, el_d, w_ef, w_ed = state.el_f, state.el_d, work.ef, work.ed
     for e in range(el_f.size):
-        if explicit_step:
-            state.el_W[e] += work.dW[e]
-        else:
-            state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
+        # the trapezoidal rule is the exact work of a piecewise-linear branch, and no step
+        # changes branch (kinks and turning points are landed on)
+        state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
         i, j = el_i[e], el_j[e]
         dv = work.v[i] - (work.v[j] if j >= 0 else 0.0)
         material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv)
@@ -858,7 +876,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
                 stats[S_REJECT_ERR] += 1
                 h = max(hh * _step_factor(err), hmin)
                 continue
-        theta, c_min, event_now = find_events(hh, model, state, settings, work)
+        theta, c_min, event_now = find_events(hh, explicit_now, model, state, settings, work)
         if event_now >= 0:  # closure at the committed state: start there, redo the step small
             h = _declare_event(event_now, t, hh, h, model, state, settings, work, rec)
             continue

@@ -16,13 +16,18 @@ DEFAULT_RTOL = {"newmark": 1e-5, "dp5": 1e-5}
 class Integrator:
     """How to integrate (the *how* and *how big* of a run).
 
+    ``Integrator()`` is the fifth-order open phase with Newmark in contact at rtol 1e-5;
+    ``Integrator(method="newmark")`` the all-Newmark solver, bit for bit as before.
+
     Parameters
     ----------
     method : str
-        "newmark": implicit Newmark/HHT-α throughout (second order). "dp5": while every gap is
-        open, the building by the explicit Dormand-Prince 5(4) pair and the walls exactly
-        (:mod:`femoat.integration.explicit`); while a contact is closed, Newmark/HHT-α as in
-        "newmark". Both locate contact events and land on element kinks the same way.
+        "dp5" (default): while every gap is open, the building by the explicit Dormand-Prince
+        5(4) pair and the walls exactly (:mod:`femoat.integration.explicit`); while a contact
+        is closed, Newmark/HHT-α as in "newmark". "newmark": implicit Newmark/HHT-α throughout
+        (second order; the method of femoat before it had "dp5"). Both locate contact events
+        and land on element kinks the same way; "dp5" also lands on the turning points of
+        yielding elements (every stage of its step is evaluated from the committed state).
     alpha : float
         HHT-α parameter in [−1/3, 0]; 0 is Newmark's average acceleration (no numerical
         damping). β = (1−α)²/4 and γ = (1−2α)/2.
@@ -34,11 +39,10 @@ class Integrator:
         walls against the gap while all gaps are open and against δ_me while a contact is
         closed [in], and the building's accelerations against 0.15 × the record's peak ground
         acceleration (at least 0.1 g) [in/s²] while all gaps are open
-        (:func:`femoat.integration.solve.error_scales`). Smaller is more accurate and slower;
-        peaks converge about as rtol^0.6. The default is chosen so that every peak (impact
-        forces, displacements, drifts, floor accelerations) is within 1e-3 of a converged run
-        (``benchmarks/peak_accuracy.py`` measures it); 1e-4 takes about half the steps and is
-        within 1.6e-3.
+        (:func:`femoat.integration.solve.error_scales`). Smaller is more accurate and slower.
+        Each method's default is chosen so that every peak (impact forces, displacements,
+        drifts, floor accelerations) is within 1e-3 of a converged run
+        (``benchmarks/peak_accuracy.py`` measures it).
     max_step : float or None
         Largest step [s]; ``None`` means the ground record's sample interval (steps never cross a
         sample anyway, so the excitation is exactly piecewise linear).
@@ -54,7 +58,7 @@ class Integrator:
         Keep every k-th step of the open phase in the output (contact steps are always kept).
     """
 
-    method: str = "newmark"
+    method: str = "dp5"
     alpha: float = 0.0
     rtol: float | None = None
     max_step: float | None = None

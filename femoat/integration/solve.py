@@ -155,9 +155,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
                 ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
-                kv=np.zeros((ex.N_STAGES, n)), ka=np.zeros((ex.N_STAGES, n)),
-                kf=np.zeros((ex.N_STAGES, nel)), eu=np.zeros(n), ev=np.zeros(n),
-                de=np.zeros(kn.N_ENERGY), dW=np.zeros(nel),
+                kv=np.zeros((ex.N_STAGES, n)), ka=np.zeros((ex.N_STAGES, n)), eu=np.zeros(n),
+                ev=np.zeros(n), de=np.zeros(kn.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]))
 

@@ -41,6 +41,8 @@ _W, _R, _UY, _MU_SLOW, _MU_FAST, _A, _VREG = range(N_PARAMS)
 @njit(cache=True)
 def friction_coefficient(p, v):
     """μ(v) [-] and dμ/dv [s/in] with the smoothed |v| (see the module docstring)."""
+    if p[_MU_FAST] == p[_MU_SLOW]:  # constant friction: the same numbers without exp and sqrt
+        return p[_MU_FAST], 0.0
     eps = p[_VREG]
     root = np.sqrt(v * v + eps * eps)
     speed = root - eps
