@@ -71,33 +71,39 @@ def quintic_accel_abs_max(t, u, v, a, ag, smooth):
     peak = np.abs(total).max(axis=0) if total.shape[0] else np.zeros(total.shape[1])
     h = np.diff(t)
     ok = np.asarray(smooth, dtype=bool) & (h > 0.0)
-    i = np.flatnonzero(ok)
-    if i.size == 0:
+    if not ok.any():
         return [float(p) for p in peak]
-    hk = h[i][:, None]
-    dag = (ag[i + 1] - ag[i])[:, None]
+    hk = np.where(ok, h, 1.0)[:, None]  # (slices, not gathers: every interval at once)
+    dag = np.diff(ag)[:, None]
     # x(θ) = Σ c_k θ^k on θ ∈ [0, 1]: c0..c2 from the start, c3..c5 from the end's residuals
-    c1, c2 = hk * v[i], 0.5 * hk * hk * a[i]
-    r0 = u[i + 1] - u[i] - c1 - c2
-    r1 = hk * v[i + 1] - c1 - 2.0 * c2
-    r2 = hk * hk * a[i + 1] - 2.0 * c2
-    c3 = 10.0 * r0 - 4.0 * r1 + 0.5 * r2
-    c4 = -15.0 * r0 + 7.0 * r1 - r2
-    c5 = 6.0 * r0 - 3.0 * r1 + 0.5 * r2
-    # a(θ) + a_g(θ) = α0 + α1·θ + α2·θ² + α3·θ³
     h2 = hk * hk
-    al0 = a[i] + ag[i][:, None]
-    al1, al2, al3 = 6.0 * c3 / h2 + dag, 12.0 * c4 / h2, 20.0 * c5 / h2
+    c1, c2 = hk * v[:-1], 0.5 * h2 * a[:-1]
+    r0 = u[1:] - u[:-1] - c1 - c2
+    r1 = hk * v[1:] - c1 - 2.0 * c2
+    r2 = h2 * a[1:] - 2.0 * c2
+    # a(θ) + a_g(θ) = α0 + α1·θ + α2·θ² + α3·θ³ (α_k = k(k−1)·c_k/h², a_g linear)
+    al0 = total[:-1]
+    al1 = 6.0 * (10.0 * r0 - 4.0 * r1 + 0.5 * r2) / h2 + dag
+    al2 = 12.0 * (-15.0 * r0 + 7.0 * r1 - r2) / h2
+    al3 = 20.0 * (6.0 * r0 - 3.0 * r1 + 0.5 * r2) / h2
     # an interval too short for its coefficients (round-off of u divided by h² would exceed a
     # millionth of the accelerations) keeps its end values: it is a landing step of
     # nanoseconds, in which the acceleration cannot turn
     eps = np.finfo(float).eps
-    roundoff = 120.0 * eps * (np.abs(u[i]) + np.abs(u[i + 1])) / h2
-    usable = roundoff <= 1e-6 * (np.abs(al0) + np.abs(a[i + 1]) + 1.0)
-    for s in _roots_in_unit_interval(3.0 * al3, 2.0 * al2, al1):  # every column at once
-        s = np.where(usable, s, np.nan)
-        vals = np.abs(al0 + s * (al1 + s * (al2 + s * al3)))
-        peak = np.fmax(peak, np.nanmax(vals, axis=0, initial=0.0))
+    roundoff = 120.0 * eps * (np.abs(u[:-1]) + np.abs(u[1:])) / h2
+    usable = ok[:, None] & (roundoff <= 1e-6 * (np.abs(al0) + np.abs(a[1:]) + 1.0))
+    # |α0 + α1·θ + α2·θ² + α3·θ³| ≤ Σ|α_k| on [0, 1]: only intervals whose bound passes the
+    # largest sample can hold the crest, and only those are searched
+    bound = np.abs(al0) + np.abs(al1) + np.abs(al2) + np.abs(al3)
+    candidate = usable & (bound > peak[None, :])
+    for k in range(total.shape[1]):
+        j = np.flatnonzero(candidate[:, k])
+        if j.size == 0:
+            continue
+        a0, a1, a2, a3 = al0[j, k], al1[j, k], al2[j, k], al3[j, k]
+        for s in _roots_in_unit_interval(3.0 * a3, 2.0 * a2, a1):
+            vals = np.abs(a0 + s * (a1 + s * (a2 + s * a3)))
+            peak[k] = np.fmax(peak[k], np.nanmax(vals, initial=0.0))
     return [float(p) for p in peak]
 
 

@@ -1,5 +1,6 @@
 """The friendly entry point: run a pounding model under a ground motion."""
 
+import functools
 import math
 
 from femoat.collapse import CollapseCriteria, collapse_summary
@@ -7,6 +8,13 @@ from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.results import RunResult
 from femoat.structure.pounding import PoundingModel
+
+
+@functools.lru_cache(maxsize=64)
+def packed_model(model):
+    """``model.pack()``, once per model: a suite runs each model under many records, and the
+    solver copies what it changes (element and contact states) before integrating."""
+    return model.pack()
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
@@ -47,7 +55,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
         duration = motion.duration + extra_time
     integ = integrator or Integrator()
-    packed = model.pack()
+    packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     if collapse is not None:
         if not isinstance(collapse, CollapseCriteria):

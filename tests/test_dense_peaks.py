@@ -62,3 +62,29 @@ def test_velocity_peak_between_samples_is_exact_for_a_linear_acceleration():
     # the same between samples that are repeated (an event recorded twice at one instant)
     t2 = np.array([0.0, 0.0, 2.0])
     assert linear_accel_velocity_abs_max(t2, np.r_[0.0, v], np.r_[1.0, a]) == pytest.approx(0.5)
+
+
+def test_quintic_acceleration_crest_converges_at_fourth_order():
+    # u = sin t with u̇, ü exact at samples h apart, the crest of |ü| = 1 (t = π/2) in the middle
+    # of an interval, no ground motion: the quintic Hermite interpolant's second derivative
+    # misses the crest by O(h⁴) (the interpolant is exact to degree 5: u − p = O(h⁶), two
+    # derivatives cost h²), so the log-log slope is about 4; the samples alone miss it by
+    # 1 − cos(h/2) ≈ h²/8.
+    from femoat.dense_peaks import quintic_accel_abs_max
+
+    errors, steps = [], [0.4, 0.2, 0.1, 0.05]
+    for h in steps:
+        t = np.pi / 2 - 0.5 * h + h * np.arange(-5, 6)
+        u, v, a = np.sin(t)[:, None], np.cos(t)[:, None], -np.sin(t)[:, None]
+        peak = quintic_accel_abs_max(t, u, v, a, np.zeros(t.size), np.ones(t.size - 1, bool))
+        errors.append(abs(peak[0] - 1.0))
+        assert abs(np.abs(a).max() - 1.0) == pytest.approx(1 - np.cos(h / 2), rel=1e-9)
+    slope = np.polyfit(np.log(steps), np.log(errors), 1)[0]
+    assert 3.7 < slope < 4.5, (slope, errors)
+    # an interval not marked smooth keeps its samples (the crest is missed there)
+    h = 0.4
+    t = np.pi / 2 - 0.5 * h + h * np.arange(-5, 6)
+    peak = quintic_accel_abs_max(t, np.sin(t)[:, None], np.cos(t)[:, None],
+                                 -np.sin(t)[:, None], np.zeros(t.size),
+                                 np.zeros(t.size - 1, bool))
+    assert peak[0] == pytest.approx(np.sin(t).max(), rel=1e-15)
