@@ -235,3 +235,86 @@ def test_messy_suite_reports_every_variation_with_reasons(tmp_path):
     readme = (tmp_path / "README.txt").read_text()
     assert "default, not measured" in readme and "PGA" in readme and "'exclude'" in readme
     assert all(p.stat().st_size > 0 for p in paths)
+
+
+# ---- the FEMA P695 inputs: from the suite file, the options, the defaults --------------------
+
+def _summary(tmp_path, meta, **options):
+    write_report(synthetic_ida(), meta, tmp_path, **options)
+    return pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
+
+
+def test_mu_t_ratings_and_sdc_from_the_suite_file_move_the_margin_as_fema_p695_says(tmp_path):
+    # E: Ŝ_CT = 1.0 g, H: 1.5 g; Dmax at T = 1.5 s: S_MT = S_M1/T = 0.9/1.5 = 0.6 g, so
+    # CMR(E) = 1.667, CMR(H) = 2.5.
+    # μT = 1 (an elastic system): β1 = 0.14·(μT − 1)^0.42 = 0 so SSF = 1 (Table 7-1b, first
+    # column); β_RTR = 0.1 + 0.1·1 = 0.2 (Eq. 7-2), β_TOT(B, B, B) = √(0.2² + 3·0.2²) = 0.4
+    # (Table 7-2); ACMR10 = e^(1.2816·0.4) = 1.670, ACMR20 = e^(0.8416·0.4) = 1.400 (Table 7-3).
+    # E's ACMR = 1.667 sits between them: it passes as an archetype, not as a group of one.
+    s = _summary(tmp_path / "mu1", {**META, "definition": {"p695": {"mu_t": 1.0}}})
+    assert (s.loc["E", "SSF [-]"], s.loc["E", "beta_TOT [-]"]) == (1.0, 0.4)
+    assert (s.loc["E", "ACMR10% [-]"], s.loc["E", "ACMR20% [-]"]) == (1.67, 1.4)
+    assert s.loc["E", "ACMR [-]"] == approx4(1.0 / 0.6)
+    assert s.loc["E", "verdict"] == "fail: >= ACMR20% only" and s.loc["H", "verdict"] == "pass"
+    # μT = 8 with poor ratings D, D, D: β_TOT = √(0.4² + 3·0.5²) = 0.954 → 0.950 (Table 7-2's
+    # largest); ACMR10 = e^(1.2816·0.95) = 3.379, ACMR20 = e^(0.8416·0.95) = 2.225 (Table 7-3:
+    # 3.38, 2.23). SSF(μT = 8) = e^(0.3170·1.5) = 1.609: ACMR(E) = 2.681 fails 10 %,
+    # ACMR(H) = 4.022 passes.
+    poor = {"mu_t": 8.0, "design_requirements": "D", "test_data": "d", "modeling": "D"}
+    s = _summary(tmp_path / "poor", {**META, "definition": {"p695": poor}})
+    assert s.loc["E", "beta_TOT [-]"] == 0.95
+    assert (s.loc["E", "ACMR10% [-]"], s.loc["E", "ACMR20% [-]"]) == (3.379, 2.225)
+    assert s.loc["E", "verdict"] == "fail: >= ACMR20% only" and s.loc["H", "verdict"] == "pass"
+    # SDC Dmin from [scaling] sdc: S_MT = S_M1/T = 0.30/1.5 = 0.2 g (Table 6-1), and SSF from
+    # Table 7-1a (ε0 = 1.0 instead of 1.5): e^(0.3170·1.0) = 1.373 (table: 1.37);
+    # ACMR(E) = 1.373·1.0/0.2 = 6.865
+    dmin = {**META, "sdc": "Dmin", "definition": {"scaling": {"sdc": "Dmin"},
+                                                  "p695": {"mu_t": 8.0}}}
+    s = _summary(tmp_path / "dmin", dmin)
+    assert s.loc["E", "S_MT [g]"] == approx4(0.2) and s.loc["E", "SSF [-]"] == 1.373
+    assert s.loc["E", "ACMR [-]"] == approx4(1.373 * 5.0)
+    # β_TOT given directly (0.6): ACMR10 = e^(1.2816·0.6) = 2.157; ACMR(E) = 2.681 passes
+    s = _summary(tmp_path / "beta", {**META, "definition": {"p695": {"mu_t": 8.0,
+                                                                      "beta_total": 0.6}}})
+    assert (s.loc["E", "beta_TOT [-]"], s.loc["E", "ACMR10% [-]"]) == (0.6, 2.157)
+    assert s.loc["E", "verdict"] == "pass"
+    readme = (tmp_path / "beta" / "README.txt").read_text()
+    assert "mu_T = 8 (suite file [p695] mu_t)" in readme
+    assert "beta_TOT = 0.6 (suite file [p695] beta_total (given directly))" in readme
+
+
+def test_report_options_override_the_suite_file_and_say_so(tmp_path):
+    # the suite file says μT = 8 (SSF 1.609); the option μT = 1 gives SSF = 1 and β_TOT = 0.4,
+    # and a rating given beside the file's β_TOT replaces it: (C, B, B) at μT = 1:
+    # √(0.2² + 0.35² + 2·0.2²) = √0.2425 = 0.4924 → 0.500 (Table 7-2, rounded to 0.025)
+    meta = {**META, "definition": {"p695": {"mu_t": 8.0, "beta_total": 0.6}}}
+    s = _summary(tmp_path, meta, mu_t=1.0, design_requirements="C")
+    assert (s.loc["H", "SSF [-]"], s.loc["H", "beta_TOT [-]"]) == (1.0, 0.5)
+    readme = (tmp_path / "README.txt").read_text()
+    assert "mu_T = 1 (given (--mu-t))" in readme
+    assert "design_requirements given (--design-requirements); test_data default" in readme
+    assert "SDC Dmax (default)" in readme
+
+
+@pytest.mark.parametrize("p695, message", [
+    ({"mu_t": 0.5}, "mu_t = 0.5"), ({"test_data": "E"}, "test_data = 'E'"),
+    ({"modeling": "B", "beta_total": 0.5}, "not both"), ({"mu": 3}, "unknown key"),
+    ({"beta_total": True}, "beta_total = True")])
+def test_bad_p695_inputs_name_the_key_and_the_fix(tmp_path, p695, message):
+    with pytest.raises(ValueError, match=message):
+        write_report(synthetic_ida(), {**META, "definition": {"p695": p695}}, tmp_path)
+
+
+def test_pga_suite_reports_without_a_margin(tmp_path):
+    # [scaling] method = "pga" without a period: suite.json has smt = None, period = None; the
+    # report has the fragility and responses but no S_MT, CMR or verdict
+    t = synthetic_ida().assign(im_kind="pga")
+    meta = {**META, "scaling": "pga", "period": None, "smt": None, "sdc": None}
+    paths = write_report(t, meta, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
+    # (stripes: every distinct IM is a stripe; the fit is not the point here)
+    assert s.loc["H", "n_records"] == N_REC and s.loc["H", "S_CT empirical [g]"] > 0
+    assert np.isnan(s.loc["H", "S_MT [g]"]) and np.isnan(s.loc["H", "CMR [-]"])
+    assert set(s["verdict"]) == {"no margin"}
+    assert "no margin" in (tmp_path / "README.txt").read_text()
+    assert all(p.stat().st_size > 0 for p in paths)
