@@ -39,7 +39,7 @@ def test_quick_study_writes_every_figure_and_a_table_with_impacts_on_both_sides(
 
 
 def test_paper_findings_hold(quick_study):
-    # PAPER.md §1: peak force and peak wall displacement are similar for all laws (here within
+    # docs/paper.md §1: peak force and peak wall displacement are similar for all laws (here within
     # ±15 % of their mean), and the stiff steel wall sees larger forces than the concrete one.
     runs, _ = quick_study
     for wall in ("concrete", "steel"):
@@ -83,7 +83,7 @@ def test_result_file_round_trip(quick_study, tmp_path):
 
 
 def test_consistent_damping_gives_a_different_wall():
-    # PAPER.md §5.1: C_imp 0.170 instead of 3.3 kip·s/in: an underdamped concrete wall that
+    # docs/paper.md §5.1: C_imp 0.170 instead of 3.3 kip·s/in: an underdamped concrete wall that
     # rings, so the wall moves farther than with the (over-damped) published value.
     motion = paper_motion(quick=True)
     pub = run(paper_model("concrete", "H", "published"), motion)

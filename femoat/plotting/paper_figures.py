@@ -1,7 +1,7 @@
 """Paper Figs. 4-7 and the global response, from the runs of the paper study.
 
 ``runs`` is a dict {(wall, law): RunResult}; every figure has a panel per wall with the five
-laws overlaid (PAPER.md §1).
+laws overlaid (docs/paper.md §1).
 """
 
 import numpy as np
