@@ -25,7 +25,7 @@ def _text_files():
     yield ROOT / "CITATION.cff"
 
 
-# a document (*.md, *.cff, LICENSE) named anywhere, a markdown link or image target, and a path
+# a document (*.md, *.cff) named anywhere, a link or image target in markdown, and a path
 # under one of the repository's folders ("femoat/suite/headline.toml", "benchmarks/x.py")
 _DOCUMENT = re.compile(r"(?<![\w/.-])((?:[\w.-]+/)*[\w.-]+\.(?:md|cff))\b")
 _LINK = re.compile(r"\]\(([^)\s#]+)\)")
@@ -49,8 +49,9 @@ def missing_references(path, text):
     a reference outside it (``../``) is missing by definition."""
     out = []
     for lineno, line in enumerate(text.splitlines(), 1):
-        names = _DOCUMENT.findall(line) + _LINK.findall(line) + _REPO_PATH.findall(line)
-        for name in names:
+        links = _LINK.findall(line) if path.suffix == ".md" else []  # markdown only
+        names = _DOCUMENT.findall(line) + links + _REPO_PATH.findall(line)
+        for name in dict.fromkeys(names):  # once per line
             if "<" in name or "*" in name or name.endswith("/"):
                 continue
             if name.startswith("../") or not _exists(name, path):

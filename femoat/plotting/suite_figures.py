@@ -55,7 +55,8 @@ def plot_ida_curves(panels, path, xlabel, im_label, s_mt=None):
                 collapse[order]
             stop = np.argmax(collapse) + 1 if collapse.any() else im.size
             ax.plot(edp[:stop], im[:stop], color="0.4", lw=0.8, marker=".", ms=3)
-            ax.plot(edp[collapse], im[collapse], "x", color="C3", ms=6)
+            if collapse.any():  # the lowest collapse intensity (IDA: collapsed from there on)
+                ax.plot(edp[stop - 1], im[stop - 1], "x", color="C3", ms=6)
         if s_mt:
             ax.axhline(s_mt, color="k", lw=0.8, ls="--")
         ax.axvline(1.12 * top, color="0.5", lw=0.8, ls=":")
@@ -140,11 +141,9 @@ def plot_responses_side_by_side(labels, styles, groups, path, title):
             err = np.vstack([med - med * np.exp(-beta), med * np.exp(beta) - med])
             ax.bar(x, np.nan_to_num(med), yerr=np.nan_to_num(err), capsize=2,
                    color=[s["color"] for s in styles], alpha=0.8)
-            for xi, m, n in zip(x, med, counts):
-                if np.isfinite(n):
-                    ax.annotate(f"{int(n)}", (xi, 0 if not np.isfinite(m) else m),
-                                fontsize=6, ha="center", va="bottom")
-            ax.set_xticks(x, labels, rotation=60, ha="right", fontsize=7)
+            ticks = [f"{lb} (n={int(n) if np.isfinite(n) else 0})"
+                     for lb, n in zip(labels, counts)]
+            ax.set_xticks(x, ticks, rotation=60, ha="right", fontsize=7)
             ax.set_title(f"{name}\n{group}", fontsize=8)
             ax.grid(alpha=0.3, axis="y")
     fig.suptitle(title, fontsize=9)

@@ -23,8 +23,8 @@ FILES = {
     "with any impact.",
     "responses_near_mce.csv": "at the intensity nearest S_MT, per variation, the runs that "
     "pounded and those that did not, apart: their number and the median and dispersion of each "
-    "response (runs that collapsed left out). Without pounding the impact force and the wall "
-    "displacement are zero.",
+    "response (runs that collapsed left out). Without pounding the impact force is zero and "
+    "the wall moves only with the ground.",
     "fragility.png": "collapse fragility, a panel per wall (or other non-law variation), a "
     "curve per contact law: the empirical points (IDA: fraction of records collapsed at or "
     "below each collapse intensity; stripes: fraction per stripe) and the fitted lognormal, "
@@ -42,9 +42,9 @@ FILES = {
     "displacement [in]; the 'collapsed' strip says that the run collapsed (by whichever "
     "criterion, see the run table's collapse_<c> columns), not that the isolator failed.",
     "responses_near_mce.png": "median responses per variation at the intensity nearest S_MT, "
-    "the runs that pounded and those that did not as separate bars (bars: median*exp(+-beta), "
-    "the count above each bar). Compare walls and laws within one colour; a missing bar is a "
-    "group without runs.",
+    "the runs that pounded (top row) and those that did not (bottom row) apart (bars: "
+    "median*exp(+-beta), n runs in each label). Compare walls and laws within one colour; a "
+    "missing bar is a group without runs.",
 }
 
 POLICY = {"separate": "solver failures are left out of the fragility and the statistics and "

@@ -79,7 +79,7 @@ def write_figures(figs, meta, out, ida, smt):
         sf.plot_responses_side_by_side(
             labels, styles, groups, paths[-1],
             f"median across records at {at:.3g} g ({'nearest S_MT' if smt else 'median IM'}); "
-            "bars median·exp(±β); runs that collapsed left out; n above the bars")
+            "bars median·exp(±β); runs that collapsed left out; n runs per bar")
     return paths
 
 
