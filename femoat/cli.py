@@ -16,10 +16,16 @@ def build_parser():
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
+    usages = []
     for name in COMMANDS:
         module = importlib.import_module(f"femoat.commands.{name}")
         p = module.add_parser(sub)
         p.set_defaults(_run=module.run)
+        usages.append(p.format_usage().replace("usage: ", "  ").rstrip())
+    # the options of every command in `femoat --help`; `femoat COMMAND --help` explains them
+    parser.epilog = ("options of each command (femoat COMMAND --help explains them):\n"
+                     + "\n".join(usages))
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
     return parser
 
 

@@ -115,9 +115,25 @@ def test_scenario_file_and_cli_json(tmp_path, capsys):
     assert out["impacts_neg"] == 0 and out["impacts_pos"] >= 1  # one wall only
     assert len(out["peak_drift"]) == 3 and len(out["peak_floor_acceleration"]) == 3
     assert (tmp_path / "out" / "run.npz").exists()
+    # every value has its unit, and the files written are named
+    units = out["units"]
+    assert (units["peak_impact_force_pos"], units["peak_drift"], units["peak_drift_ratio"],
+            units["peak_floor_acceleration"], units["cpu_seconds"]) == ("kip", "in", "-", "g", "s")
+    assert set(units) == set(out) - {"units", "written"}
+    assert out["written"][0] == str(tmp_path / "out" / "run.npz")
+    # the text form: 4 significant digits, the unit in brackets, and where the files went
+    assert main(["run", str(scen)]) == 0
+    text = capsys.readouterr().out
+    line = next(x for x in text.splitlines() if x.startswith("peak_impact_force "))
+    value = line.split()[1]
+    assert line.endswith("[kip]") and len(value.replace(".", "").lstrip("0")) <= 4
+    assert f"wrote {tmp_path / 'out' / 'run.npz'}" in text
 
 
 def test_scenario_errors_name_the_key(tmp_path):
+    # the file's key, not the function's argument (was "[motion] pga_g must be ...")
+    with pytest.raises(ValueError, match=r"\[motion\] pga = -1: expected a positive"):
+        scenario_from_dict({"motion": {"pga": -1}})
     with pytest.raises(ValueError, match=r"\[walls\]: unknown key\(s\) \['lwa'\]"):
         scenario_from_dict({"walls": {"lwa": "H"}})
     with pytest.raises(ValueError, match="story_model"):

@@ -24,9 +24,20 @@ def add_parser(sub):
     p.add_argument("--rtol", type=float, default=Integrator().rtol,
                    help=f"solver accuracy (local error / DOF scale; default {Integrator().rtol:g})")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
-    p.add_argument("--out", type=Path, default=Path("femoat_output/paper"),
-                   help="output folder (default: ./femoat_output/paper)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="output folder (default: ./femoat_output/paper for the headline study, "
+                   "./femoat_output/paper-<options> for a variant, e.g. paper-consistent-quick, "
+                   "so that a variant never overwrites the headline study)")
     return p
+
+
+def default_folder(args):
+    """femoat_output/paper, with the non-default options appended: one folder per variant."""
+    parts = [args.damping] if args.damping != "published" else []
+    parts += [name for name in ("quick", "calibrate") if getattr(args, name)]
+    if args.rtol != Integrator().rtol:
+        parts.append(f"rtol{args.rtol:g}")
+    return Path("femoat_output") / "-".join(["paper", *parts])
 
 
 def run(args):
@@ -35,7 +46,8 @@ def run(args):
 
     runs, motion = run_paper_study(damping=args.damping, quick=args.quick,
                                    calibrate=args.calibrate, integrator=Integrator(rtol=args.rtol))
-    paths = write_outputs(runs, motion, args.out, args.damping, figures=not args.no_figures)
+    out = args.out or default_folder(args)
+    paths = write_outputs(runs, motion, out, args.damping, figures=not args.no_figures)
     print(f"Paper study, C_imp = {args.damping}: {motion.name}, PGA {motion.pga:.2f} g")
     print(format_table(summary_rows(runs)))
     for p in paths:

@@ -205,8 +205,7 @@ def suite_from_dict(d, base_dir=Path(".")):
         try:
             m = build_model(var.apply(tables, combo), stop, base_dir)
         except (ValueError, TypeError) as exc:
-            where = f"variation {var.label(combo)}" if combo else "model"
-            raise ValueError(f"suite {where}: {exc}") from None
+            raise ValueError(f"suite {_culprit(tables, combo, stop, base_dir)}: {exc}") from None
         n_stories = max(n_stories, len(m.story_heights))
     scaling = sc.scaling_from_dict(d.get("scaling", {}), refs, time_scale, duration)
     suite = Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
@@ -220,6 +219,20 @@ def suite_from_dict(d, base_dir=Path(".")):
     digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
     object.__setattr__(suite, "hash", digest[:16])
     return suite
+
+
+def _culprit(tables, combo, stop, base_dir):
+    """Where a model error lies: the model tables themselves (a typo in [solver] fails every
+    variation, and fails without any) or this variation's values."""
+    from femoat.suite.model import build_model
+
+    if not combo:
+        return "model"
+    try:
+        build_model(tables, stop, base_dir)
+    except (ValueError, TypeError):
+        return "model (the tables, whatever the variation)"
+    return f"variation {var.label(combo)}"
 
 
 def _number(d, key, default, where, zero=False):
