@@ -292,7 +292,7 @@ def test_report_options_override_the_suite_file_and_say_so(tmp_path):
     assert (s.loc["H", "SSF [-]"], s.loc["H", "beta_TOT [-]"]) == (1.0, 0.5)
     readme = (tmp_path / "README.txt").read_text()
     assert "mu_T = 1 (given (--mu-t))" in readme
-    assert "design_requirements given (--design-requirements); test_data default" in readme
+    assert "ratings: design_requirements given; test_data default; modeling default" in readme
     assert "SDC Dmax (default)" in readme
 
 

@@ -58,9 +58,9 @@ class P695Inputs:
         """One line per input: its value and where it came from (README.txt, the terminal)."""
         beta = (f"beta_TOT = {self.beta_total:.3g} ({self.sources['beta_total']})"
                 if self.ratings is None else
-                f"beta_TOT = {self.beta_total:.3g} from the quality ratings design requirements "
-                f"{self.ratings[0]}, test data {self.ratings[1]}, modeling {self.ratings[2]} and "
-                f"mu_T (Table 7-2; {self.sources['beta_total']})")
+                f"beta_TOT = {self.beta_total:.3g} from mu_T and the quality ratings "
+                f"{self.ratings[0]} (design requirements), {self.ratings[1]} (test data), "
+                f"{self.ratings[2]} (modeling) (Table 7-2; {self.sources['beta_total']})")
         return [f"SDC {self.sdc} ({self.sources['sdc']})",
                 f"mu_T = {self.mu_t:g} ({self.sources['mu_t']})", beta]
 
@@ -136,10 +136,15 @@ def resolve(meta, given=None):
         return P695Inputs(sdc, mu_t, None, beta, sources)
     picks = [_pick(k, given, suite) for k in RATING_KEYS]
     ratings = tuple(p[0] for p in picks)
-    kinds = sorted({p[1] for p in picks})
-    sources["beta_total"] = "ratings: " + ("; ".join(
-        f"{k} {p[1]}" for k, p in zip(RATING_KEYS, picks)) if len(kinds) > 1 else kinds[0])
+    kinds = [_kind(p[1]) for p in picks]
+    sources["beta_total"] = "ratings: " + (kinds[0] if len(set(kinds)) == 1 else "; ".join(
+        f"{k} {kind}" for k, kind in zip(RATING_KEYS, kinds)))
     return P695Inputs(sdc, mu_t, ratings, None, sources)
+
+
+def _kind(source):
+    """'given', 'suite file [p695]' or 'default' of a source sentence."""
+    return next(k for k in ("given", "suite file [p695]", "default") if source.startswith(k))
 
 
 def _pick(key, given, suite):
