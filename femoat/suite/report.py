@@ -31,7 +31,6 @@ import pandas as pd
 
 from femoat.atomic import atomic_path, write_text
 from femoat.suite import statistics as st
-from femoat.suite.margin import collapse_row, margin_basis
 from femoat.suite.p695_inputs import RATING_KEYS, resolve
 from femoat.suite.readme import readme_text
 
@@ -129,6 +128,9 @@ def ordered_variations(table, meta):
 
 
 def _collapse_rows(table, meta, inputs):
+    from femoat.suite.margin import collapse_row  # scipy: imported when used
+    from femoat.suite.p695_inputs import margin_basis
+
     ida, policy = meta.get("scaling") == "ida", meta.get("solver_failure", "separate")
     basis = margin_basis(meta, inputs)
     out = []
