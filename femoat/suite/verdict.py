@@ -65,9 +65,9 @@ def verdict_text(table, summary, inputs, smt, note, where):
     c = counts(table)
     lines = [f"femoat suite: {where}: {c['runs']} runs stored, {c['collapses']} collapsed, "
              f"{c['solver_failures']} solver failures, {c['errors']} errors",
-             "FEMA P695 inputs: " + "; ".join(inputs.statements())]
-    lines.append(f"S_MT = {smt:.4g} g" + (f"; {note}" if note else "") if smt is not None
-                 else f"no margin: {note}")
+             "FEMA P695 inputs:"] + [f"  {x}" for x in inputs.statements()]
+    lines.append(f"  S_MT = {smt:.4g} g" + (f"; {note}" if note else "") if smt is not None
+                 else f"  no margin: {note}")
     lines += ["", table_text(summary), "",
               "verdict: 'pass' ACMR >= ACMR10% (a variation judged as a performance group of "
               "one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
