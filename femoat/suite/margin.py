@@ -86,7 +86,7 @@ def collapse_row(rows, use, policy, ida, basis):
 
 
 def verdict(row):
-    """One word or phrase per variation, FEMA P695 Section 7.6 with the variation judged as a
+    """One word or phrase per variation, FEMA P695 Section 7.5 with the variation judged as a
     performance group of one: "pass" (ACMR >= ACMR10 %), "fail" (ACMR < ACMR20 %), "fail:
     >= ACMR20% only" (an archetype would pass, a group of one fails), "inconclusive" (a lower
     bound that fails) or "no margin"."""

