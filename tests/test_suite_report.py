@@ -318,3 +318,36 @@ def test_pga_suite_reports_without_a_margin(tmp_path):
     assert set(s["verdict"]) == {"no margin"}
     assert "no margin" in (tmp_path / "README.txt").read_text()
     assert all(p.stat().st_size > 0 for p in paths)
+
+
+def test_coinciding_pounding_curves_are_drawn_once_and_panels_go_by_wall():
+    from femoat.suite.report_figures import curve_label, distinct_curves, panel_of
+
+    im = np.array([0.1, 0.2, 0.3])
+    same = np.array([0.0, 0.5, 1.0])
+    curves = [("E / concrete", im, same), ("H / concrete", im, same + 1e-12),
+              ("E / steel", im, np.array([0.0, 0.25, 1.0]))]
+    # two curves equal to 1e-9 share a line (and a legend entry); the third is its own
+    merged = distinct_curves(curves)
+    assert [labels for labels, _, _ in merged] == [["E / concrete", "H / concrete"],
+                                                   ["E / steel"]]
+    # a fragility panel per wall, the law naming the curve inside it
+    key = {"walls.law": "H", "walls.preset": "steel"}
+    assert (panel_of(key), curve_label("H / steel", key)) == ("steel", "H")
+    assert panel_of({"walls.law": "H"}) == "all"
+
+
+def test_variations_come_in_the_suite_files_order_laws_innermost(tmp_path):
+    # the run table lists H before E and steel before concrete; the file lists E, H and
+    # concrete, steel: rows, panels and bars follow the file, the laws of one wall together
+    t = synthetic_ida()
+    t = pd.concat([t.assign(**{"walls.preset": "steel",
+                               "run_id": t["run_id"] + "-steel"}), t], ignore_index=True)
+    t = t.iloc[::-1].reset_index(drop=True)
+    meta = {**META, "definition": {"p695": {"mu_t": 8.0}, "variations": {
+        "walls.law": ["E", "H"], "walls.preset": ["concrete", "steel"]}}}
+    write_report(t, meta, tmp_path)
+    s = pd.read_csv(tmp_path / "collapse_summary.csv")
+    assert list(s["variation"]) == ["E / concrete", "H / concrete", "E / steel", "H / steel"]
+    r = pd.read_csv(tmp_path / "response_by_variation.csv")
+    assert list(dict.fromkeys(r["variation"])) == list(s["variation"])

@@ -331,8 +331,12 @@ def test_a_pga_suite_reports_and_prints_its_verdict(tmp_path, capsys):
 
 def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
     # Ctrl-C on a terminal sends SIGINT to the whole process group: the CLI and its local Dask
-    # workers. Full records, one run per task: long enough to interrupt after the first parts.
-    path = _suite(tmp_path, SMALL.replace("duration = {duration}\n", ""), batch=1)
+    # workers. Full records, one run per task, 3 records x 5 laws x 6 levels = 90 runs: long
+    # enough to interrupt after the first parts.
+    text = SMALL.replace("duration = {duration}\n", "").replace(
+        '["E", "H"]', '["E", "V", "J", "H", "M"]').replace(
+        "[0.5, 1.5]", "[0.5, 0.75, 1.0, 1.25, 1.5, 2.0]")
+    path = _suite(tmp_path, text, batch=1)
     out = tmp_path / "out"
     proc = _cli([path, "--workers", "2", "--out", out], start_new_session=True)
     deadline = time.monotonic() + 180
@@ -345,7 +349,7 @@ def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
     _, err = proc.communicate(timeout=120)
     err = err.decode()
     stored = len(load_table(out))
-    if stored >= 12:
+    if stored >= 90:
         pytest.skip("the suite finished before it could be interrupted (machine too fast)")
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
