@@ -119,9 +119,9 @@ def ordered_variations(table, meta):
     def position(group):
         out = []
         for k in keys:
-            values = [str(v) for v in listed.get(k, [])]
-            value = str(group[1][k])
-            out.append(values.index(value) if value in values else len(values))
+            values, value = listed.get(k, []), group[1][k]
+            out.append(next((i for i, v in enumerate(values)  # 3 == 3.0; "E" == "E"
+                             if v == value or str(v) == str(value)), len(values)))
         return out
 
     return sorted(groups, key=position)  # stable: unlisted values keep the table's order
