@@ -354,3 +354,28 @@ def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert f"interrupted; {stored} runs stored in" in err
+
+
+def test_the_finished_mark_goes_stale_with_any_change(tmp_path):
+    # the mark lets a rerun skip validation; anything that could give the rerun work must
+    # invalidate it: the suite file, a record file, a part file added or removed
+    import os
+
+    from femoat.suite import finished
+
+    path, out = _suite(tmp_path), tmp_path / "out"
+    (out / "runs").mkdir(parents=True)
+    (out / "runs" / "part-a.parquet").write_bytes(b"x")
+    finished.mark(path, out)
+    assert finished.is_finished(path, out)
+    record = next((tmp_path / "peer").glob("*.AT2"))
+    st = record.stat()
+    os.utime(record, ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))  # a record replaced
+    assert not finished.is_finished(path, out)
+    finished.mark(path, out)
+    (out / "runs" / "part-b.parquet").write_bytes(b"x")  # a part stored since
+    assert not finished.is_finished(path, out)
+    finished.mark(path, out)
+    path.write_text(path.read_text() + "[p695]\nmu_t = 2.0\n")  # the suite file edited
+    assert not finished.is_finished(path, out)
+    assert not finished.is_finished(path, tmp_path / "elsewhere")  # no mark at all
