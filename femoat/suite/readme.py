@@ -118,4 +118,13 @@ def readme_text(meta, inputs, basis, ida, levels, written):
               "Numbers have 4 significant digits; units are in the column names.", ""]
     lines += P695 + ["", "Files:"]
     lines += [f"  {name}: {FILES.get(name, '')}" for name in written if name in FILES]
-    return "\n".join(lines) + "\n"
+    return "\n".join(_wrap(line) for line in lines) + "\n"
+
+
+def _wrap(line, width=100):
+    """A line wrapped at ``width``, its continuation indented two spaces deeper."""
+    import textwrap
+
+    indent = " " * (len(line) - len(line.lstrip(" ")))
+    return textwrap.fill(line, width, subsequent_indent=indent + "  ", break_long_words=False,
+                         break_on_hyphens=False) if line else ""
