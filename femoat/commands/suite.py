@@ -62,15 +62,15 @@ def report_options(args):
 
 def print_verdict(out, options, as_json=False, extra=None, write=True, force=False):
     """Write the report of the suite folder ``out`` (``write``) unless it is current and not
-    ``force``d, then print
-    the verdict for every stored run; returns the report paths (empty when not rewritten)."""
+    ``force``d, then print the verdict for every stored run; returns the report paths (empty
+    when not rewritten). Without ``write`` the verdict is computed, nothing is written."""
     import pandas as pd
 
     from femoat.suite import report as rp
     from femoat.suite.p695_inputs import margin_basis
     from femoat.suite.verdict import counts, verdict_text
 
-    paths, table = [], None
+    paths = []
     if write and not force and rp.is_current(out, options):  # only the status counts needed
         from femoat.suite.table import load_table
 
