@@ -16,10 +16,16 @@ def build_parser():
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
+    usages = []
     for name in COMMANDS:
         module = importlib.import_module(f"femoat.commands.{name}")
         p = module.add_parser(sub)
         p.set_defaults(_run=module.run)
+        usages.append(p.format_usage().replace("usage: ", "  ").rstrip())
+    # the options of every command in `femoat --help`; `femoat COMMAND --help` explains them
+    parser.epilog = ("options of each command (femoat COMMAND --help explains them):\n"
+                     + "\n".join(usages))
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
     return parser
 
 
@@ -31,6 +37,9 @@ def main(argv=None):
     except (ValueError, FileNotFoundError) as exc:
         print(f"femoat {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # Ctrl-C: one line, no traceback
+        print(f"\nfemoat {args.command}: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -387,6 +387,10 @@ def _motion(d, base_dir, where):
     pga = _number(d, "pga", gmod.PAPER_PGA, where, "g") if source == "erzincan" or "pga" in d \
         else None
     if pga is not None:
+        if pga <= 0.0:
+            raise ValueError(f"[motion] pga = {d['pga']!r}: expected a positive target PGA "
+                             "[g], e.g. pga = 0.91 (omit it to keep the record's own "
+                             "amplitude).")
         gm = gm.scaled_to_pga(pga)
     ts = _number(d, "time_scale", 0.5 if source == "erzincan" else 1.0, where)
     if ts != 1.0:

@@ -14,7 +14,7 @@ from femoat.walls import wall_preset
 @pytest.mark.parametrize(
     "wall, expected",
     [
-        # PAPER.md §2 reference numbers (concrete, e = 0.7, a = 0.1, δ_me = 0.025 in).
+        # docs/paper.md §2 reference numbers (concrete, e = 0.7, a = 0.1, δ_me = 0.025 in).
         ("concrete", dict(k_eff=1059.36, xi_kv=0.12221, c_eff=0.21804, xi_j=0.29811,
                           xi_h=0.68571, k1=3220.46, k2=819.24, delta_y=0.0025)),
         # Steel: k_eff = 11000·√0.025 = 1739.25; the ξ's depend on e only (same as concrete);
@@ -48,7 +48,7 @@ def test_xi_kv_solves_the_arctan_relation():
 
 
 def test_presets_damping_choices():
-    # PAPER.md §5.1: consistent C_imp = 2·ξ_imp·√(K1·M1): concrete 2·2.0·√(2.4·0.29/386.09)
+    # docs/paper.md §5.1: consistent C_imp = 2·ξ_imp·√(K1·M1): concrete 2·2.0·√(2.4·0.29/386.09)
     # = 0.16983, steel 2·0.4·√(100·0.41/386.09) = 0.26070; published values are 3.3 and 5.1.
     assert wall_preset("concrete").wall.damping == 3.3
     assert wall_preset("steel").wall.damping == 5.1
@@ -107,7 +107,7 @@ def test_bilinear_loop_area_and_closure(wall):
     expected = (1 - pr.e**2) * 0.4 * pr.k_eff * pr.delta_me**2
     assert area == pytest.approx(expected, rel=1e-6)
     # The loop closes at δ = 0 with zero force, and the unloading path is continuous (the
-    # printed fourth branch jumps by (k1−k2)... at δ_m − δ_y unless δ_m = 2δ_y; PAPER.md §5.2).
+    # printed fourth branch jumps by (k1−k2)... at δ_m − δ_y unless δ_m = 2δ_y; docs/paper.md §5.2).
     assert f_down[-1] == 0.0
     assert np.max(np.abs(np.diff(f_down))) < 2 * law.stiffnesses()[0] * (up[1] - up[0])
 

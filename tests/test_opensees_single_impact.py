@@ -1,6 +1,6 @@
 """femoat's single impact against its OpenSees twin (femoat.opensees.single_impact).
 
-Rigid stop, v0 = 10 in/s, both presets of PAPER.md Table 3, all five laws. Where the OpenSees
+Rigid stop, v0 = 10 in/s, both presets of docs/paper.md §3, Table 3, all five laws. Where the OpenSees
 material is the same law (E, J, H), peak force, indentation, duration and restitution agree within
 0.5 %; where it is not (V pulls in tension, M's first contact step, H's δ̇₀ taken one step late),
 the difference is derived and asserted.
@@ -91,7 +91,7 @@ def test_viscoelastic_gap_pulls_until_separation(preset):
     e_pull = math.exp(-xi * math.pi / math.sqrt(1 - xi**2))
     # ViscoelasticGap keeps f = k_eff·δ + c_eff·δ̇ until δ = 0, tension included: its impact is
     # half a damped period, π/ω_d, with e = exp(−ξπ/√(1−ξ²)) = exp(−0.12221·π/0.99250) = 0.6792,
-    # i.e. femoat's allow_tension=True variant (PAPER.md §5.3), which it matches within 0.5 %
+    # i.e. femoat's allow_tension=True variant (docs/paper.md §5.3), which it matches within 0.5 %
     # (rebound error bound f_sep·dt/(2m·e·v0) ≤ 0.32 %, see the module docstring).
     _agree(os_run, fm_pull)
     assert os_run["restitution"] == pytest.approx(e_pull, rel=REL)
@@ -179,7 +179,7 @@ def test_material_map_uses_compression_signs():
                      "Hertzdamp": 2, "ImpactMaterial": 3}[name]
         assert args[gap_index] == -1e-3
     name, k1, k2, dy, gap = opensees_contact_material(_law("concrete", "M"), 1e-3)
-    # PAPER.md §2 reference numbers: k1 = 3220.46, k2 = 819.24 kip/in, δ_y = 0.0025 in.
+    # docs/paper.md §2 reference numbers: k1 = 3220.46, k2 = 819.24 kip/in, δ_y = 0.0025 in.
     assert (k1, k2, dy) == pytest.approx((3220.46, 819.24, -0.0025), rel=1e-5)
 
 

@@ -39,7 +39,7 @@ def test_quick_study_writes_every_figure_and_a_table_with_impacts_on_both_sides(
 
 
 def test_paper_findings_hold(quick_study):
-    # PAPER.md §1: peak force and peak wall displacement are similar for all laws (here within
+    # docs/paper.md §1: peak force and peak wall displacement are similar for all laws (here within
     # ±15 % of their mean), and the stiff steel wall sees larger forces than the concrete one.
     runs, _ = quick_study
     for wall in ("concrete", "steel"):
@@ -83,7 +83,7 @@ def test_result_file_round_trip(quick_study, tmp_path):
 
 
 def test_consistent_damping_gives_a_different_wall():
-    # PAPER.md §5.1: C_imp 0.170 instead of 3.3 kip·s/in: an underdamped concrete wall that
+    # docs/paper.md §5.1: C_imp 0.170 instead of 3.3 kip·s/in: an underdamped concrete wall that
     # rings, so the wall moves farther than with the (over-damped) published value.
     motion = paper_motion(quick=True)
     pub = run(paper_model("concrete", "H", "published"), motion)
@@ -115,9 +115,25 @@ def test_scenario_file_and_cli_json(tmp_path, capsys):
     assert out["impacts_neg"] == 0 and out["impacts_pos"] >= 1  # one wall only
     assert len(out["peak_drift"]) == 3 and len(out["peak_floor_acceleration"]) == 3
     assert (tmp_path / "out" / "run.npz").exists()
+    # every value has its unit, and the files written are named
+    units = out["units"]
+    assert (units["peak_impact_force_pos"], units["peak_drift"], units["peak_drift_ratio"],
+            units["peak_floor_acceleration"], units["cpu_seconds"]) == ("kip", "in", "-", "g", "s")
+    assert set(units) == set(out) - {"units", "written"}
+    assert out["written"][0] == str(tmp_path / "out" / "run.npz")
+    # the text form: 4 significant digits, the unit in brackets, and where the files went
+    assert main(["run", str(scen)]) == 0
+    text = capsys.readouterr().out
+    line = next(x for x in text.splitlines() if x.startswith("peak_impact_force "))
+    value = line.split()[1]
+    assert line.endswith("[kip]") and len(value.replace(".", "").lstrip("0")) <= 4
+    assert f"wrote {tmp_path / 'out' / 'run.npz'}" in text
 
 
 def test_scenario_errors_name_the_key(tmp_path):
+    # the file's key, not the function's argument (was "[motion] pga_g must be ...")
+    with pytest.raises(ValueError, match=r"\[motion\] pga = -1: expected a positive"):
+        scenario_from_dict({"motion": {"pga": -1}})
     with pytest.raises(ValueError, match=r"\[walls\]: unknown key\(s\) \['lwa'\]"):
         scenario_from_dict({"walls": {"lwa": "H"}})
     with pytest.raises(ValueError, match="story_model"):

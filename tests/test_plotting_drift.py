@@ -48,3 +48,27 @@ def test_unequal_story_heights_draw_ratio_curves(ax):
     np.testing.assert_allclose(line.get_xdata(), 100.0 * np.array(ratio))
     np.testing.assert_array_equal(line.get_ydata(), [1, 2, 3])
     assert _story_ticks(ax) == [1, 2, 3]
+
+
+def test_the_ratio_axis_names_the_story_height_and_says_when_it_is_assumed(ax):
+    # 39 in is femoat's default story height (13 ft at quarter scale), an assumption
+    peaks = {"H": {"peak_drift": DRIFT, "peak_drift_ratio": [d / 39.0 for d in DRIFT]}}
+    assert drift_panel(ax, peaks).get_xlabel() == (
+        "drift ratio [%] = drift / 39 in (the default story height, an assumption)")
+
+
+def test_a_logarithmic_acceleration_axis_has_one_set_of_labels(ax):
+    from femoat.plotting.paper_figures import _plain_log_ticks
+
+    # 0.35-0.9 g: on less than a decade matplotlib labels the minor ticks (2x10^-1, 3x10^-1,
+    # ..., 6x10^-1) beside the majors' 10^-1, 10^0: two sets of labels. Here: plain numbers on
+    # the major ticks only, one each
+    ax.set_xscale("log")
+    ax.plot([0.35, 0.9], [0, 3])
+    ax.set_xlim(0.35, 0.9)
+    _plain_log_ticks(ax.xaxis)
+    ax.figure.canvas.draw()
+    major = [t.get_text() for t in ax.xaxis.get_ticklabels() if t.get_text()]
+    minor = [t.get_text() for t in ax.xaxis.get_ticklabels(minor=True) if t.get_text()]
+    assert minor == [] and "0.5" in major and len(set(major)) == len(major)
+    assert not any("times" in t or "^" in t for t in major)

@@ -34,7 +34,7 @@ def test_undamped_hertz_closed_form(kind):
     assert r.max_indentation == pytest.approx(d_max, rel=1e-4)
     assert r.peak_force == pytest.approx(kh * d_max**1.5, rel=1e-4)
     # t_c = 2·(δ_max/v)·∫₀¹ dx/√(1−x^2.5) = 2·(δ_max/v)·B(2/5, 1/2)/(5/2)
-    #     = 3.21806·(m²/(k_h²·v))^(1/5). (PAPER.md prints 3.2145, which comes from Goldsmith's
+    #     = 3.21806·(m²/(k_h²·v))^(1/5). (The paper prints 3.2145, docs/paper.md §5.5, from Goldsmith's
     #     rounded 2.94·δ_max/v; the exact coefficient 2·B(0.4, 0.5)/2.5 = 2.94328.)
     t_c = 2 * (d_max / V0) * beta(0.4, 0.5) / 2.5
     assert r.contact_duration == pytest.approx(t_c, rel=1e-4)
@@ -44,10 +44,10 @@ def test_undamped_hertz_closed_form(kind):
 
 def test_kelvin_voigt_reaches_e_without_tension_and_not_with_it():
     law = make_law("V", CONCRETE.contact)
-    # The ξ_KV relation of PAPER.md §2 is exact for a tension-free Kelvin-Voigt contact.
+    # The ξ_KV relation of docs/paper.md §2 is exact for a tension-free Kelvin-Voigt contact.
     assert simulate_impact(law, V0).restitution == pytest.approx(0.700, abs=1e-3)
     # Keeping contact (and pulling) until δ = 0 lasts exactly half a damped period:
-    # e = exp(−ξπ/√(1−ξ²)) = exp(−0.12221·π/0.99250) = 0.6792 (PAPER.md §5.3).
+    # e = exp(−ξπ/√(1−ξ²)) = exp(−0.12221·π/0.99250) = 0.6792 (docs/paper.md §5.3).
     xi = law.damping_parameter()
     pulling = simulate_impact(make_law("V", CONCRETE.contact, allow_tension=True), V0)
     assert pulling.restitution == pytest.approx(math.exp(-xi * math.pi / math.sqrt(1 - xi**2)),

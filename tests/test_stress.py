@@ -154,7 +154,7 @@ def test_single_impact_extremes_full(label, overrides, v0, kind, target, preset)
 
 
 def test_single_impact_closed_forms_at_the_speed_extremes():
-    # Undamped Hertz into a rigid stop (PAPER.md §2): f_max = k_h·δ_max^1.5 with
+    # Undamped Hertz into a rigid stop (docs/paper.md §2): f_max = k_h·δ_max^1.5 with
     # δ_max = (5·m·v²/(4·k_h))^(2/5); linear spring f_max = v·√(k·m). Both hold from 0.01 to
     # 100 in/s (δ_max from 4.5e-5 to 0.07 in), to the single-impact solver's 1e-8.
     pr = _params("concrete", {"e": 1.0})

@@ -102,6 +102,18 @@ def test_bad_variation_value_names_the_variation(tmp_path, capsys):
     _fails(tmp_path, capsys, GOOD + '[variations]\n"walls.law" = ["E", "Q"]\n', "walls.law=Q")
 
 
+def test_a_typo_in_the_model_tables_is_not_blamed_on_a_variation(tmp_path, capsys):
+    # [solver] rtl (for rtol) fails every variation alike: the error names the model tables
+    err = _fails(tmp_path, capsys, GOOD + '[solver]\nrtl = 1e-4\n[variations]\n'
+                 '"walls.law" = ["E", "H"]\n', "rtl", "suite model")
+    assert "variation" not in err.split("model")[0]
+
+
+def test_a_bad_p695_table_is_named(tmp_path, capsys):
+    _fails(tmp_path, capsys, GOOD + '[p695]\nmu_t = 0.5\n', "[p695] mu_t = 0.5")
+    _fails(tmp_path, capsys, GOOD + '[p695]\nmodelling = "B"\n', "[p695]", "modelling")
+
+
 def test_p695_needs_fema_records(tmp_path, capsys):
     text = GOOD.replace('method = "ida"', 'method = "p695"').replace("levels", "multipliers")
     _fails(tmp_path, capsys, text, "p695", "FEMA P695")

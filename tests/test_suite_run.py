@@ -209,17 +209,65 @@ def test_hunt_and_fill_suite_resumes_its_traces(tmp_path):
     assert (tmp_path / "out" / "report" / "collapse_summary.csv").is_file()
 
 
+def _verdict_table(stdout):
+    """The rows of the verdict table printed by femoat suite: {heading: cell}."""
+    lines = stdout.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("variation "))
+    rows = []
+    for line in lines[start:]:
+        if not line.strip():
+            break
+        rows.append(line.split())
+    heads = ["variation", "records", "runs", "collapsed", "failed", "S_CT [g]", "CMR [-]",
+             "SSF [-]", "ACMR [-]", "ACMR10% [-]", "ACMR20% [-]"]
+    # headings with a space ("S_CT [g]") split in two; the verdict may have spaces
+    return [dict(zip(heads, r[:11]), verdict=" ".join(r[11:])) for r in rows[1:]]
+
+
 def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys):
     # the command a user runs: the runs, then the report in OUT/report (IDA stripes at 0.5 and
     # 1.5 g for 3 records x 2 laws = 12 runs)
     from femoat.cli import main
 
-    out = tmp_path / "out"
-    assert main(["suite", str(_suite(tmp_path)), "--serial", "--out", str(out)]) == 0
+    out, path = tmp_path / "out", _suite(tmp_path)
+    assert main(["suite", str(path), "--serial", "--out", str(out)]) == 0
     assert len(load_table(out)) == 12
     for name in ("collapse_summary.csv", "response_by_variation.csv", "README.txt"):
         assert (out / "report" / name).stat().st_size > 0
-    assert "report in" in capsys.readouterr().out
+    first = capsys.readouterr().out
+    assert "report in" in first and "24 runs stored" not in first
+    # the verdict on the terminal is collapse_summary.csv, for every stored run: 12 here
+    assert "12 runs stored" in first
+    printed = _verdict_table(first)
+    csv = pd.read_csv(out / "report" / "collapse_summary.csv")
+    assert [r["variation"] for r in printed] == list(csv["variation"]) == ["E", "H"]
+    for row, (_, c) in zip(printed, csv.iterrows()):
+        assert int(row["runs"]) == c["n_runs"] and int(row["collapsed"]) == c["n_collapsed"]
+        for heading, column in (("S_CT [g]", "S_CT empirical [g]"), ("CMR [-]", "CMR [-]"),
+                                ("ACMR [-]", "ACMR [-]"), ("ACMR10% [-]", "ACMR10% [-]")):
+            assert float(row[heading].lstrip(">=")) == c[column]
+        assert row["verdict"] == c["verdict"]
+    # a rerun of the finished suite runs nothing and prints the same verdict (without
+    # validating the suite file again: it is marked finished)
+    assert main(["suite", str(path), "--serial", "--out", str(out)]) == 0
+    again = capsys.readouterr().out
+    assert "every run is stored" in again and _verdict_table(again) == printed
+    # a [p695] table added to the finished suite: nothing runs, the report takes it
+    path.write_text(path.read_text() + "[p695]\nmu_t = 1.5\n", encoding="utf-8")
+    assert main(["suite", str(path), "--serial", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "ran 0 runs" in text and "mu_T = 1.5 (suite file [p695] mu_t)" in text
+    assert "mu_T = 1.5" in " ".join((out / "report" / "README.txt").read_text().split())
+    # the report command prints it too, with a given mu_T stated as given
+    assert main(["suite", "report", str(out), "--mu-t", "1"]) == 0
+    assert "mu_T = 1 (given (--mu-t))" in capsys.readouterr().out
+    # --json: the same rows, keys with their units
+    import json
+
+    assert main(["suite", "report", str(out), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [r["variation"] for r in data["verdict"]] == ["E", "H"]
+    assert data["stored"]["runs"] == 12 and "S_CT empirical [g]" in data["verdict"][0]
     # --no-report leaves the report out (a rerun resumes: nothing to run)
     out2 = tmp_path / "out2"
     assert main(["suite", str(_suite(tmp_path)), "--serial", "--out", str(out2),
@@ -260,4 +308,74 @@ def test_headline_suite_runs_to_collapse_and_reports(tmp_path):
         assert mine["record"].nunique() == 44
         highs = [collapse_bracket(list(zip(t["im"], t["status"] != "ok")))[1]
                  for _, t in mine.groupby("record")]
-        assert row["S_CT empirical [g]"] == pytest.approx(float(pd.Series(highs).median()))
+        # (the CSV carries 4 significant digits)
+        assert row["S_CT empirical [g]"] == pytest.approx(float(pd.Series(highs).median()),
+                                                          rel=5e-4)
+
+
+def test_a_pga_suite_reports_and_prints_its_verdict(tmp_path, capsys):
+    # [scaling] method = "pga" has no S_MT: the report once died on float(meta["smt"]) (None);
+    # now the fragility and responses are written, and the verdict says "no margin"
+    from femoat.cli import main
+
+    text = SMALL.replace('method = "ida"\nperiod = 1.0\nlevels = [0.5, 1.5]',
+                         'method = "pga"\ntargets = [0.3, 0.9]')
+    out = tmp_path / "out"
+    assert main(["suite", str(_suite(tmp_path, text, duration=1.0)), "--serial",
+                 "--out", str(out)]) == 0
+    printed = _verdict_table(capsys.readouterr().out)
+    assert [r["verdict"] for r in printed] == ["no margin", "no margin"]
+    csv = pd.read_csv(out / "report" / "collapse_summary.csv")
+    assert csv["CMR [-]"].isna().all() and (out / "report" / "fragility.png").is_file()
+
+
+def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
+    # Ctrl-C on a terminal sends SIGINT to the whole process group: the CLI and its local Dask
+    # workers. Full records, one run per task, 3 records x 5 laws x 6 levels = 90 runs: long
+    # enough to interrupt after the first parts.
+    text = SMALL.replace("duration = {duration}\n", "").replace(
+        '["E", "H"]', '["E", "V", "J", "H", "M"]').replace(
+        "[0.5, 1.5]", "[0.5, 0.75, 1.0, 1.25, 1.5, 2.0]")
+    path = _suite(tmp_path, text, batch=1)
+    out = tmp_path / "out"
+    proc = _cli([path, "--workers", "2", "--out", out], start_new_session=True)
+    deadline = time.monotonic() + 180
+    while time.monotonic() < deadline and proc.poll() is None:
+        if len(list(out.glob("runs/part-*.parquet"))) >= 1:
+            break
+        time.sleep(0.01)
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGINT)  # the group of the process started here
+    _, err = proc.communicate(timeout=120)
+    err = err.decode()
+    stored = len(load_table(out))
+    if stored >= 90:
+        pytest.skip("the suite finished before it could be interrupted (machine too fast)")
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert f"interrupted; {stored} runs stored in" in err
+
+
+def test_the_finished_mark_goes_stale_with_any_change(tmp_path):
+    # the mark lets a rerun skip validation; anything that could give the rerun work must
+    # invalidate it: the suite file, a record file, a part file added or removed
+    import os
+
+    from femoat.suite import finished
+
+    path, out = _suite(tmp_path), tmp_path / "out"
+    (out / "runs").mkdir(parents=True)
+    (out / "runs" / "part-a.parquet").write_bytes(b"x")
+    finished.mark(path, out)
+    assert finished.is_finished(path, out)
+    record = next((tmp_path / "peer").glob("*.AT2"))
+    st = record.stat()
+    os.utime(record, ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))  # a record replaced
+    assert not finished.is_finished(path, out)
+    finished.mark(path, out)
+    (out / "runs" / "part-b.parquet").write_bytes(b"x")  # a part stored since
+    assert not finished.is_finished(path, out)
+    finished.mark(path, out)
+    path.write_text(path.read_text() + "[p695]\nmu_t = 2.0\n")  # the suite file edited
+    assert not finished.is_finished(path, out)
+    assert not finished.is_finished(path, tmp_path / "elsewhere")  # no mark at all

@@ -9,14 +9,15 @@ def add_parser(sub):
     p = sub.add_parser(
         "contact-curves",
         help="Fig. 1: force-indentation loops of the five contact laws",
-        description="Simulate one impact of m_eff per contact law and write the "
-        "force-indentation loops (PNG) and the histories (CSV).",
+        description="Simulate one impact of m_eff per contact law against a rigid stop (the "
+        "default; --sdof-wall for the preset's wall) and write the force-indentation loops "
+        "(PNG) and the histories (CSV).",
     )
     p.add_argument("--wall", default="concrete", choices=PRESETS,
                    help="wall preset giving the contact parameters (default: concrete)")
     p.add_argument("--v0", type=float, default=10.0, help="impact speed [in/s] (default: 10)")
     p.add_argument("--sdof-wall", action="store_true",
-                   help="hit the preset's SDOF wall instead of a rigid stop")
+                   help="hit the preset's SDOF wall (default: a rigid stop)")
     p.add_argument("--damping", default="published", choices=DAMPING_CHOICES,
                    help="C_imp choice when --sdof-wall is given (default: published)")
     p.add_argument("--calibrate", action="store_true",
@@ -39,8 +40,10 @@ def run(args):
     plot_contact_curves(results, png, title=f"{args.wall} contact parameters, v0 = {args.v0:g} "
                         f"in/s, {target}" + (", calibrated" if args.calibrate else ""))
     write_contact_curves_csv(results, csv_path)
+    print(f"{args.wall} contact parameters, v0 = {args.v0:g} in/s into a {target}"
+          + ("" if args.sdof_wall else " (default; --sdof-wall for the preset's wall)"))
     print(f"{'law':4s}{'peak force [kip]':>18s}{'max indent. [in]':>18s}{'duration [ms]':>15s}"
-          f"{'e':>9s}")
+          f"{'e [-]':>9s}")
     for kind, r in results.items():
         print(f"{kind:4s}{r.peak_force:18.4f}{r.max_indentation:18.6f}"
               f"{r.contact_duration * 1e3:15.4f}{r.restitution:9.4f}")

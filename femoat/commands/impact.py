@@ -11,7 +11,8 @@ def add_parser(sub):
         "impact",
         help="simulate one impact through one contact law",
         description="Simulate the effective mass m_eff of a wall preset hitting a rigid stop or "
-        "the preset's SDOF wall (Masroor element) at speed v0 through one contact law. "
+        "the preset's SDOF wall (Masroor element; the default) at speed v0 through one contact "
+        "law. "
         "Prints peak force [kip], max indentation [in], contact duration [s], achieved "
         "restitution and dissipated energy [kip·in].",
     )
@@ -22,7 +23,7 @@ def add_parser(sub):
                    help="wall preset of the paper's Table 3 (default: concrete)")
     p.add_argument("--v0", type=float, default=10.0, help="impact speed [in/s] (default: 10)")
     p.add_argument("--rigid", action="store_true",
-                   help="hit a rigid stop instead of the preset's SDOF wall")
+                   help="hit a rigid stop (default: the preset's SDOF wall, Masroor element)")
     p.add_argument("--calibrate", action="store_true",
                    help="calibrate the law's damping parameter so that a rigid-stop impact at "
                    "v0 reaches the preset's e exactly")

@@ -67,8 +67,12 @@ def run(args):
     except OpenSeesFailure as exc:
         os_peaks, failure = {}, str(exc)
     if args.json:
-        print(json.dumps(dict(femoat={**fm.peaks, "compile_seconds": startup},
-                              opensees=os_peaks, opensees_dt=args.dt, opensees_failure=failure)))
+        from femoat.commands.run import unit_of
+
+        femoat = {**fm.peaks, "compile_seconds": startup}
+        units = {k: unit_of(k) for k in {**femoat, **os_peaks}} | {"opensees_dt": "s"}
+        print(json.dumps(dict(femoat=femoat, opensees=os_peaks, opensees_dt=args.dt,
+                              opensees_failure=failure, units=units)))
     else:
         print(f"{sc.motion.name}, {duration:g} s; femoat rtol = {sc.integrator.rtol:g}, "
               f"OpenSees dt = {args.dt:g} s")

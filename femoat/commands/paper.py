@@ -28,9 +28,22 @@ def add_parser(sub):
                    help="solver accuracy (local error / DOF scale; default: the method's, "
                    + ", ".join(f"{m} {r:g}" for m, r in DEFAULT_RTOL.items()) + ")")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
-    p.add_argument("--out", type=Path, default=Path("femoat_output/paper"),
-                   help="output folder (default: ./femoat_output/paper)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="output folder (default: ./femoat_output/paper for the headline study, "
+                   "./femoat_output/paper-<options> for a variant, e.g. paper-consistent-quick, "
+                   "so that a variant never overwrites the headline study)")
     return p
+
+
+def default_folder(args):
+    """femoat_output/paper, with the non-default options appended: one folder per variant."""
+    parts = [args.damping] if args.damping != "published" else []
+    parts += [name for name in ("quick", "calibrate") if getattr(args, name)]
+    if args.method != Integrator().method:
+        parts.append(args.method)
+    if args.rtol is not None and args.rtol != Integrator(method=args.method).rtol:
+        parts.append(f"rtol{args.rtol:g}")
+    return Path("femoat_output") / "-".join(["paper", *parts])
 
 
 def run(args):
@@ -38,9 +51,10 @@ def run(args):
     from femoat.report import format_table, summary_rows, write_outputs
 
     runs, motion = run_paper_study(damping=args.damping, quick=args.quick,
-                                   calibrate=args.calibrate, integrator=Integrator(method=args.method,
-                                                                     rtol=args.rtol))
-    paths = write_outputs(runs, motion, args.out, args.damping, figures=not args.no_figures)
+                                   calibrate=args.calibrate,
+                                   integrator=Integrator(method=args.method, rtol=args.rtol))
+    out = args.out or default_folder(args)
+    paths = write_outputs(runs, motion, out, args.damping, figures=not args.no_figures)
     print(f"Paper study, C_imp = {args.damping}: {motion.name}, PGA {motion.pga:.2f} g")
     print(format_table(summary_rows(runs)))
     for p in paths:

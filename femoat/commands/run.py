@@ -10,7 +10,7 @@ def add_parser(sub):
         help="run a scenario file (building, walls, law, motion, solver)",
         description="Run the scenario described by a TOML file (see femoat.scenario for every "
         "key) and write the results (run.npz), the impact table (impacts.csv) and figures to "
-        "the output folder.",
+        "the output folder; prints the peaks with their units and every file written.",
     )
     p.add_argument("scenario", type=Path, help="scenario TOML file")
     p.add_argument("--out", type=Path, default=None,
@@ -18,6 +18,34 @@ def add_parser(sub):
     p.add_argument("--json", action="store_true", help="print the peak summary as one JSON object")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
     return p
+
+
+# units of the peak summary, by key prefix (longest first); lists hold one value per story/floor
+UNITS = (("peak_impact_force", "kip"), ("impacts_", "-"), ("peak_base_displacement", "in"),
+         ("peak_base_velocity", "in/s"), ("peak_wall_displacement", "in"),
+         ("peak_indentation", "in"), ("peak_impulse", "kip*s"), ("peak_drift_ratio", "-"),
+         ("peak_drift", "in"), ("peak_floor_acceleration", "g"),
+         ("peak_base_acceleration", "g"), ("energy_residual", "- (relative)"),
+         ("cpu_seconds", "s"), ("compile_seconds", "s"), ("steps", "-"),
+         ("collapse", "s (time each criterion is first reached)"))
+
+
+def unit_of(key):
+    """The unit of a peak-summary entry, e.g. ``kip`` for ``peak_impact_force_pos``."""
+    return next((u for prefix, u in UNITS if key.startswith(prefix)), "-")
+
+
+def _fmt(value):
+    """A value to 4 significant digits (lists and dicts element by element)."""
+    if isinstance(value, bool) or value is None:
+        return str(value)
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k}: {_fmt(v)}" for k, v in value.items()) + "}"
+    return str(value)
 
 
 def run(args):
@@ -38,18 +66,21 @@ def run(args):
     law = sc.model.walls[0].law.kind if sc.model.walls else "-"
     wall = sc.wall_label
     # (the figures include global_response.png, drawn once)
-    write_outputs({(wall, law): result}, sc.motion, out, "scenario",
-                  figures=sc.figures and not args.no_figures)
+    paths = write_outputs({(wall, law): result}, sc.motion, out, "scenario",
+                          figures=sc.figures and not args.no_figures)
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:
         summary["collapse"] = result.collapse
+    written = [out / "run.npz", *paths]
     if args.json:
-        print(json.dumps(summary))
+        print(json.dumps({**summary, "units": {k: unit_of(k) for k in summary},
+                          "written": [str(p) for p in written]}))
     else:
         for k, v in summary.items():
-            print(f"{k:28s} {v}")
-        print(f"wrote {out / 'run.npz'}")
+            print(f"{k:28s} {_fmt(v):>12s}  [{unit_of(k)}]")
+        for p in written:
+            print(f"wrote {p}")
     from femoat.commands.paper import _compile_ahead_of_time
 
     _compile_ahead_of_time()

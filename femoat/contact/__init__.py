@@ -1,4 +1,4 @@
-"""Contact laws between the base mat and a moat wall (PAPER.md §2)."""
+"""Contact laws between the base mat and a moat wall (docs/paper.md §2)."""
 
 from femoat.contact.damping import (
     muthukumar_stiffnesses,

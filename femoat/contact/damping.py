@@ -1,4 +1,4 @@
-"""Damping parameters of the contact laws from a coefficient of restitution (PAPER.md §2).
+"""Damping parameters of the contact laws from a coefficient of restitution (docs/paper.md §2).
 
 These are the published closed forms. They are approximations: the achieved restitution of a
 simulated impact differs slightly (see :mod:`femoat.impact.calibration` for exact values).

@@ -1,4 +1,4 @@
-"""H, Hertzdamp (PAPER.md §2): f = k_h·δ^1.5·(1 + ξ_h·δ̇/δ̇₀), cut at zero, with δ̇₀ the approach
+"""H, Hertzdamp (docs/paper.md §2): f = k_h·δ^1.5·(1 + ξ_h·δ̇/δ̇₀), cut at zero, with δ̇₀ the approach
 velocity at gap closure (at least v0_min).
 
 Params ``p = [k_h, xi_h, v0_min]`` (k_h at :data:`femoat.contact.hertz.K_H`). History:

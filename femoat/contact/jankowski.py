@@ -1,4 +1,4 @@
-"""J, Jankowski's nonlinear viscoelastic contact (PAPER.md §2): f = k_h·δ^1.5 + c_J·δ̇ while
+"""J, Jankowski's nonlinear viscoelastic contact (docs/paper.md §2): f = k_h·δ^1.5 + c_J·δ̇ while
 approaching (δ̇ > 0), k_h·δ^1.5 while separating, with c_J = 2·ξ_J·√(m_eff·k_h·√δ).
 
 Params ``p = [k_h, xi_J, m_eff]`` (k_h at :data:`femoat.contact.hertz.K_H`). History: none.

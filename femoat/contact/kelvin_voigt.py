@@ -1,4 +1,4 @@
-"""V, the Kelvin-Voigt contact: f = k_eff·δ + c_eff·δ̇ (PAPER.md §2), cut at zero unless it may
+"""V, the Kelvin-Voigt contact: f = k_eff·δ + c_eff·δ̇ (docs/paper.md §2), cut at zero unless it may
 pull (then the episode ends at δ = 0 only).
 
 Params ``p = [k_eff, c_eff, tension]``: stiffness [kip/in], dashpot [kip·s/in], 1.0 if the law

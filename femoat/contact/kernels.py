@@ -1,6 +1,6 @@
 """Compiled contact-law entry points the time-stepping loops call, dispatching on the law code.
 
-Conventions (PAPER.md §2): indentation ``d`` = δ [in] > 0 in contact; ``v`` = δ̇ [in/s] > 0 while
+Conventions (docs/paper.md §2): indentation ``d`` = δ [in] > 0 in contact; ``v`` = δ̇ [in/s] > 0 while
 approaching. Forces are compressive-positive [kip]. Every force kernel returns
 ``(f, df/dδ, df/dδ̇)`` evaluated from the *committed* history ``h`` (never modified here), so a
 Newton iteration may call it any number of times; :func:`contact_commit` advances the history once

@@ -1,4 +1,4 @@
-"""The five contact laws of the paper as small frozen objects (PAPER.md §2).
+"""The five contact laws of the paper as small frozen objects (docs/paper.md §2).
 
 ======  ==============================  ===========================================
 symbol  law                             damping parameter (from e unless calibrated)

@@ -1,4 +1,4 @@
-"""E, the linear elastic contact spring: f = k_eff·δ (PAPER.md §2). No damping: e = 1.
+"""E, the linear elastic contact spring: f = k_eff·δ (docs/paper.md §2). No damping: e = 1.
 
 Params ``p = [k_eff]``. History: none.
 """

@@ -1,4 +1,4 @@
-"""M, Muthukumar's bilinear contact (PAPER.md §2, §5.2): loading on k1 up to δ_y, then on k2;
+"""M, Muthukumar's bilinear contact (docs/paper.md §2, §5.2): loading on k1 up to δ_y, then on k2;
 below the episode's largest indentation δ_m, the unloading path from (δ_m, f_m) (slope k1 over
 δ_y, then the line f = k2·δ through the origin). Reloading after a partial unloading retraces
 that path (no dissipation in inner cycles) until it meets the backbone again at δ_m.

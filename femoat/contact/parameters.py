@@ -1,4 +1,4 @@
-"""The parameter set shared by all five contact laws (PAPER.md §2, the paper's Table 2).
+"""The parameter set shared by all five contact laws (docs/paper.md §2, the paper's Table 2).
 
 Sign convention: indentation δ [in] is positive in contact; δ̇ [in/s] is positive while the two
 bodies approach. Contact forces are compressive and reported positive [kip].

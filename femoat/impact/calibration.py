@@ -1,6 +1,6 @@
 """Exact-restitution calibration: the damping parameter that makes a simulated impact reach e.
 
-The paper's closed forms (PAPER.md §2) are approximations: at e = 0.70, Hertzdamp achieves about
+The paper's closed forms (docs/paper.md §2) are approximations: at e = 0.70, Hertzdamp achieves about
 0.683 and Jankowski about 0.698. :func:`calibrate` solves, with Brent's method on the precise
 single-impact solver, for the parameter that gives the target exactly at a stated impact speed
 (and, optionally, against a stated wall rather than the rigid stop that defines e).

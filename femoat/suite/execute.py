@@ -17,6 +17,7 @@
   path (their samples are checked against the definition).
 """
 
+import contextlib
 import json
 import math
 import shutil
@@ -168,6 +169,45 @@ LOCAL_WORKER_CONFIG = {
 }
 
 
+def _ignore_sigint():
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _ignore_sigint_plugin():
+    """A worker plugin: Ctrl-C on the terminal reaches every process of its group; the local
+    workers ignore it (the client stops them), so it prints no worker tracebacks."""
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    class IgnoreSigint(WorkerPlugin):
+        name = "femoat-ignore-sigint"
+
+        def setup(self, worker):
+            _ignore_sigint()
+
+    return IgnoreSigint()
+
+
+@contextlib.contextmanager
+def _sigint_ignored():
+    """SIGINT ignored while local workers start: a spawned process inherits the ignored signal
+    (Python keeps SIGINT ignored when its parent ignored it), so Ctrl-C then stops only us."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
 def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file):
     import logging
 
@@ -186,10 +226,11 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         n = workers or os.cpu_count() or 1
         # (workers' own log lines at shutdown, e.g. a heartbeat to a scheduler already gone,
         # are noise: a failing run reaches us through its future)
-        with dask.config.set(LOCAL_WORKER_CONFIG):
+        with dask.config.set(LOCAL_WORKER_CONFIG), _sigint_ignored():
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                    dashboard_address=None, silence_logs=logging.CRITICAL)
         client = Client(cluster)
+        client.register_plugin(_ignore_sigint_plugin())  # and a worker restarted later
     futures = {}
     try:
         kinds = set(client.run(_worker_kernels).values())

@@ -14,16 +14,18 @@ from femoat.suite.fragility import (FragilityError, fit_ida, fit_stripes, ida_em
                                     stripe_empirical_median)
 from femoat.suite.p695 import assess
 
+
 def _median(use, ida):
     """Empirical median collapse intensity Ŝ_CT [g] of the usable runs."""
     return ida_empirical_median(*st.ida_collapse_data(use)) if ida else \
         stripe_empirical_median(*st.stripe_counts(use))
 
 
-def collapse_row(rows, use, meta, ida, p695_args):
+def collapse_row(rows, use, policy, ida, basis):
     """(collapse_summary row, fragility-figure data) for one variation: ``rows`` all its runs,
-    ``use`` the usable ones (:func:`femoat.suite.statistics.usable_runs`)."""
-    smt = float(meta["smt"])
+    ``use`` the usable ones (:func:`femoat.suite.statistics.usable_runs` under ``policy``),
+    ``basis`` the :func:`femoat.suite.p695_inputs.margin_basis` of the suite."""
+    smt, p695_args, no_margin = basis  # (no_margin: the basis' note)
     if ida:
         x, c = st.ida_collapse_data(use)
         s_ct, n, n_col, n_cens = ida_empirical_median(x, c), x.size + c.size, x.size, c.size
@@ -55,17 +57,19 @@ def collapse_row(rows, use, meta, ida, p695_args):
            "n_runs": len(use), "n_collapsed": n_col, "n_censored": n_cens,
            "n_solver_failures": int((rows["status"] == "solver_failure").sum()),
            "n_errors": int((rows["status"] == "error").sum()),
-           "solver_failure_policy": meta.get("solver_failure", "separate"),
+           "solver_failure_policy": policy,
            "S_CT empirical [g]": s_ct, "S_CT is a lower bound": lower,
            "theta fitted [g]": theta, "beta fitted [-]": beta,
            "S_CT if solver failures collapsed [g]": _median(st.usable_runs(rows, "collapse"), ida),
-           "S_MT [g]": smt}
-    try:
-        a = assess(s_ct, smt, theta=None if np.isnan(theta) else theta,
-                   beta=None if np.isnan(beta) else beta, **p695_args).as_dict()
-    except ValueError as e:
-        a = {}
-        notes.append(f"no P695 check: {e}")
+           "S_MT [g]": np.nan if smt is None else smt}
+    a = {}
+    notes += [no_margin] if no_margin else []
+    if smt is not None:
+        try:
+            a = assess(s_ct, smt, theta=None if np.isnan(theta) else theta,
+                       beta=None if np.isnan(beta) else beta, **p695_args).as_dict()
+        except ValueError as e:
+            notes.append(f"no P695 check: {e}")
     names = {"cmr": "CMR [-]", "ssf": "SSF [-]", "acmr": "ACMR [-]", "mu_t": "mu_T [-]",
              "beta_total": "beta_TOT [-]", "acmr10": "ACMR10% [-]", "acmr20": "ACMR20% [-]",
              "p_collapse_mce": "P(collapse|MCE) fitted [-]",
@@ -75,6 +79,22 @@ def collapse_row(rows, use, meta, ida, p695_args):
     for k in ("passes_acmr20", "passes_acmr10"):  # a bound that fails decides nothing
         if lower and a and not a[k]:
             row[names[k]] = "inconclusive"
+    row["verdict"] = verdict(row)
     row["note"] = "; ".join(notes)
     curve = dict(x=pts, fraction=frac, theta=theta, beta=beta, n_collapsed=n_col, n=n, ida=ida)
     return row, curve
+
+
+def verdict(row):
+    """One word or phrase per variation, FEMA P695 Section 7.5 with the variation judged as a
+    performance group of one: "pass" (ACMR >= ACMR10 %), "fail" (ACMR < ACMR20 %), "fail:
+    >= ACMR20% only" (an archetype would pass, a group of one fails), "inconclusive" (a lower
+    bound that fails) or "no margin"."""
+    p10, p20 = row["pass ACMR>=ACMR10%"], row["pass ACMR>=ACMR20%"]
+    if "inconclusive" in (p10, p20):
+        return "pass" if p10 is True else "inconclusive"
+    if not isinstance(p10, (bool, np.bool_)):
+        return "no margin"
+    if p10:
+        return "pass"
+    return "fail: >= ACMR20% only" if p20 else "fail"

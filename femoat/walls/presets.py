@@ -1,6 +1,6 @@
-"""The paper's concrete and steel walls (Table 3, PAPER.md §3).
+"""The paper's concrete and steel walls (Table 3, docs/paper.md §3).
 
-C_imp is offered two ways (PAPER.md §5.1):
+C_imp is offered two ways (docs/paper.md §5.1):
 
 * ``"published"`` (default, reproduces the paper's figures): the printed 3.3 and 5.1 kip·s/in,
   which equal 2·ξ_imp·√(K1·(M1·g)), i.e. the weight was used for the mass;

@@ -1,0 +1,75 @@
+"""The suite's verdict on the terminal: what is stored (runs, collapses, failures), the FEMA P695
+inputs with their sources, and per variation S_CT, CMR, SSF, ACMR against ACMR10 % / 20 % with
+the verdict, as an aligned table with units. Always for the whole suite folder (its stored
+rows), never for one invocation, and with the numbers of collapse_summary.csv as written (4
+significant digits)."""
+
+import math
+
+COLUMNS = [  # (heading, collapse_summary.csv column)
+    ("variation", "variation"), ("records", "n_records"), ("runs", "n_runs"),
+    ("collapsed", "n_collapsed"), ("failed", None), ("S_CT [g]", "S_CT empirical [g]"),
+    ("CMR [-]", "CMR [-]"), ("SSF [-]", "SSF [-]"), ("ACMR [-]", "ACMR [-]"),
+    ("ACMR10% [-]", "ACMR10% [-]"), ("ACMR20% [-]", "ACMR20% [-]"), ("verdict", "verdict"),
+]
+
+
+def counts(table):
+    """{runs, collapses, solver_failures, errors} of a run table."""
+    status = table["status"]
+    return dict(runs=int(len(table)), collapses=int((status == "collapsed").sum()),
+                solver_failures=int((status == "solver_failure").sum()),
+                errors=int((status == "error").sum()))
+
+
+def cell(value):
+    """A number as in the CSV (4 significant digits), a count as an integer, NaN as '-'."""
+    if isinstance(value, bool) or value is None:
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return "-"
+        return str(int(value)) if value.is_integer() and abs(value) < 1e15 else f"{value:.4g}"
+    return str(value)
+
+
+def rows(summary):
+    """The table's cells: a list of string lists, the headings first."""
+    out = [[h for h, _ in COLUMNS]]
+    for _, r in summary.iterrows():
+        line = []
+        for heading, col in COLUMNS:
+            if col is None:  # failed: solver failures and errors
+                line.append(str(int(r["n_solver_failures"]) + int(r["n_errors"])))
+            elif col == "S_CT empirical [g]" and str(r.get("S_CT is a lower bound")) == "True":
+                line.append(">=" + cell(r[col]))
+            else:
+                line.append(cell(r[col]))
+        out.append(line)
+    return out
+
+
+def table_text(summary):
+    """The aligned table: text columns left, numbers right."""
+    cells = rows(summary)
+    widths = [max(len(r[i]) for r in cells) for i in range(len(COLUMNS))]
+    left = {0, len(COLUMNS) - 1}
+    return "\n".join("  ".join(c.ljust(w) if i in left else c.rjust(w)
+                               for i, (c, w) in enumerate(zip(r, widths))).rstrip()
+                     for r in cells)
+
+
+def verdict_text(table, summary, inputs, smt, note, where):
+    """The whole verdict: counts of ``table`` (the stored runs), the P695 inputs, the table of
+    ``summary`` (collapse_summary.csv) and where the report is."""
+    c = counts(table)
+    lines = [f"femoat suite: {where}: {c['runs']} runs stored, {c['collapses']} collapsed, "
+             f"{c['solver_failures']} solver failures, {c['errors']} errors",
+             "FEMA P695 inputs:"] + [f"  {x}" for x in inputs.statements()]
+    lines.append(f"  S_MT = {smt:.4g} g" + (f"; {note}" if note else "") if smt is not None
+                 else f"  no margin: {note}")
+    lines += ["", table_text(summary), "",
+              "verdict: 'pass' ACMR >= ACMR10% (a variation judged as a performance group of "
+              "one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
+              "archetype; '>=' marks a lower bound (fewer than half of the records collapsed)"]
+    return "\n".join(lines) + "\n"
