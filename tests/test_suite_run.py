@@ -116,6 +116,40 @@ def test_suite_runs_equal_single_runs_bit_for_bit(tmp_path):
         row["peak_floor_acceleration_3"], rel=1e-12)
 
 
+def test_a_newmark_suite_equals_newmark_single_runs_bit_for_bit(tmp_path):
+    # [solver] method = "newmark" in a suite file: its rows are those of run() with
+    # Integrator(method="newmark"), to the last bit (the default method's twin is above)
+    from femoat.collapse import CollapseCriteria
+    from femoat.ground_motions import GroundMotion, read_at2, response_spectrum
+    from femoat.integration import Integrator
+    from femoat.run import run
+    from femoat.scenario import building_from_dict, walls_from_dict
+    from femoat.structure.pounding import PoundingModel
+    from femoat.units import G
+
+    text = SMALL.replace("[variations]", '[solver]\nmethod = "newmark"\n[variations]')
+    suite = load_suite(_suite(tmp_path, text))
+    run_suite(suite, tmp_path / "out", serial=True, stream=_quiet())
+    df = load_table(tmp_path / "out")
+    row = df[(df["record"] == "Rinaldi228") & (df["walls.law"] == "E") & (df["im"] == 0.5)]
+    row = row.iloc[0]
+    gm = read_at2(PEER / "Rinaldi228.AT2")
+    gm = GroundMotion(gm.accel_g[:301], gm.dt, gm.name)
+    factor = 0.5 / float(response_spectrum(gm.time_scaled(0.5), 0.5, 0.05).psa)
+    building = building_from_dict({})
+    model = PoundingModel(building, walls_from_dict({"law": "E"},
+                                                    base_mass=building.base_weight / G))
+    ref = run(model, gm.scaled(factor).time_scaled(0.5), Integrator(method="newmark"),
+              extra_time=0.5, collapse=CollapseCriteria())
+    default = run(model, gm.scaled(factor).time_scaled(0.5), extra_time=0.5,
+                  collapse=CollapseCriteria())
+    p = ref.peaks
+    assert row["steps"] == p["steps"] != default.peaks["steps"]  # really the other method
+    assert row["peak_base_displacement"] == p["peak_base_displacement"]
+    assert row["peak_drift_1"] == p["peak_drift"][0]
+    assert row["peak_floor_acceleration_3"] == p["peak_floor_acceleration"][2]
+
+
 def test_a_run_that_cannot_converge_is_stored_and_the_suite_goes_on(tmp_path):
     # two Newton iterations per attempt converge only with small enough steps: with the default
     # min_step the solver cuts its way through, with min_step = 0.004 s it gives up
