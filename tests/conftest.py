@@ -114,3 +114,23 @@ def aot_cache(tmp_path_factory):
                   _python_env(cache))
     assert done.returncode == 0, done.stderr[-3000:]
     return cache
+
+
+def shear_chain(weights, ks):
+    """Mass [kip·s²/in] and stiffness [kip/in] matrices of a linear shear chain on a spring to
+    the ground (weights [kip] bottom up, ks[0] the ground spring, ks[k] the story below DOF k):
+    the closed-form references of the linear solver tests, independent of femoat's packing."""
+    import numpy as np
+
+    from femoat.units import G
+
+    m = np.diag(weights) / G
+    n = len(ks)
+    K = np.zeros((n, n))
+    for i, k in enumerate(ks):
+        K[i, i] += k
+        if i > 0:
+            K[i - 1, i - 1] += k
+            K[i, i - 1] -= k
+            K[i - 1, i] -= k
+    return m, K

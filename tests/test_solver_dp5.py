@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import shear_chain
 from scipy import signal
 from scipy.linalg import eigh
 
@@ -24,20 +25,6 @@ def fixed_dp5(h):
     return Integrator(method="dp5", rtol=0.099, max_step=h)
 
 
-def _chain(weights, ks):
-    """Mass and stiffness matrices of a linear shear chain on a spring to the ground."""
-    m = np.diag(weights) / G
-    n = len(ks)
-    K = np.zeros((n, n))
-    for i, k in enumerate(ks):
-        K[i, i] += k
-        if i > 0:
-            K[i - 1, i - 1] += k
-            K[i, i - 1] -= k
-            K[i - 1, i] -= k
-    return m, K
-
-
 def _slope(steps, errors):
     return np.polyfit(np.log(steps), np.log(errors), 1)[0]
 
@@ -53,7 +40,7 @@ def test_measured_order_with_analytic_forcing():
     # (slope ≥ 3.8 is the issue's bound for a method of at least fourth order).
     b = Building(isolator=Elastic(2.0), stories=(Elastic(42.799),) * 2,
                  floor_weights=(20.0, 20.0), story_damping_ratio=0.0)
-    m, K = _chain([b.base_weight, *b.floor_weights], [2.0, 42.799, 42.799])
+    m, K = shear_chain([b.base_weight, *b.floor_weights], [2.0, 42.799, 42.799])
     w2, phi = eigh(K, m)
     w = np.sqrt(w2)
     v_init = np.array([2.0, 1.0, -0.5])

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import shear_chain
 from scipy.linalg import eigh
 
 from femoat.ground_motions import GroundMotion
@@ -48,16 +49,8 @@ def test_sdof_free_vibration_closed_form():
 
 def _modal_free_vibration(building, v_init, t):
     # Modal superposition of the linear 4-DOF chain (independent of femoat's solver).
-    m = np.diag([building.base_weight, *building.floor_weights]) / G
-    ks = [building.isolator.k] + [s.k for s in building.stories]
-    n = len(ks)
-    K = np.zeros((n, n))
-    for i, k in enumerate(ks):
-        K[i, i] += k
-        if i > 0:
-            K[i - 1, i - 1] += k
-            K[i, i - 1] -= k
-            K[i - 1, i] -= k
+    m, K = shear_chain([building.base_weight, *building.floor_weights],
+                       [building.isolator.k] + [s.k for s in building.stories])
     w2, phi = eigh(K, m)
     w = np.sqrt(w2)
     q_dot0 = phi.T @ m @ v_init  # mass-normalised modes
