@@ -122,6 +122,16 @@ def test_bad_inputs():
     preset = wall_preset("concrete")
     with pytest.raises(ValueError, match="alpha"):
         Integrator(alpha=0.2)
+    with pytest.raises(ValueError, match=r"method = 'rk4'.*'newmark', 'dp5'"):
+        Integrator(method="rk4")
+    from femoat.scenario import solver_from_dict
+
+    with pytest.raises(ValueError, match=r"\[solver\] method = 'rk4'"):
+        solver_from_dict({"method": "rk4"})
+    # a method given alone takes its own default rtol; numbers are still checked
+    assert solver_from_dict({"method": "newmark"}) == Integrator(method="newmark")
+    with pytest.raises(ValueError, match="rtol"):
+        solver_from_dict({"method": "newmark", "rtol": "tight"})
     with pytest.raises(ValueError, match="gap"):
         MoatWall(make_law("E", preset.contact), preset.wall, gap=-1.0)
     with pytest.raises(ValueError, match="base_weight"):

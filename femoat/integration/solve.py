@@ -429,6 +429,14 @@ def _failure_message(packed, t, u, v, closed, integ, stalled=False):
             "locating a contact event. This is a solver defect; please report the scenario. "
             "A looser Integrator(rtol=...) usually steps past it."
         )
+    if integ.method == "dp5" and not closed.any():
+        return (
+            f"The explicit step of the open phase (method 'dp5') gave no finite state at "
+            f"t = {t:.6g} s (all gaps open; base displacement {u[0]:.4g} in, velocity "
+            f"{v[0]:.4g} in/s) even at the smallest step {integ.min_step:g} s: the building "
+            "runs away (a negative story stiffness without collapse criteria?). Give collapse "
+            "criteria, check the element parameters, or try Integrator(method='newmark')."
+        )
     return (
         f"The solver could not converge at t = {t:.6g} s ({where}; base displacement "
         f"{u[0]:.4g} in, velocity {v[0]:.4g} in/s) even at the smallest step "
