@@ -181,7 +181,9 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
                   el=nel if "elements" in chan else 0, c=ncon)
     # room for every record sample plus contact steps (grown by doubling when short)
-    cap = int(1.2 * duration / dt_rec / integ.record_every) + 1024
+    # (the fifth-order open phase takes 1-1.6 steps per sample, turning points included)
+    per_sample = 2.0 if integ.method == "dp5" else 1.2
+    cap = int(per_sample * duration / dt_rec / integ.record_every) + 1024
     rec = _recorder(cap, widths)
 
     cpu0 = _time.process_time()
