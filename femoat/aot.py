@@ -105,7 +105,8 @@ def _signatures():
     from femoat.structure import materials
 
     entry = {"run_chunk": kn.run_chunk, "ground_accel": kn.ground_accel,
-             "internal_force": kn.internal_force, "material_commit": materials.material_commit,
+             "internal_force": kn.internal_force, "start_peaks": kn.start_peaks,
+             "finish_peaks": kn.finish_peaks, "material_commit": materials.material_commit,
              "material_recoverable_energy": materials.material_recoverable_energy,
              "contact_stored_energy": contact.contact_stored_energy}
     if not kn.run_chunk.dispatcher.signatures:

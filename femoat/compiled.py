@@ -18,13 +18,15 @@ from pathlib import Path
 from femoat.jit import OPTIONS
 
 MODULE = "femoat_aot_kernels"
-EXPORTS = ("run_chunk", "ground_accel", "internal_force", "material_commit",
-           "material_recoverable_energy", "contact_stored_energy")
+EXPORTS = ("run_chunk", "ground_accel", "internal_force", "start_peaks", "finish_peaks",
+           "material_commit", "material_recoverable_energy", "contact_stored_energy")
 """The functions the building solver calls from Python (:mod:`femoat.integration.solve`)."""
 
 _ROOT = Path(__file__).resolve().parent
-_SOURCES = ("jit.py", "contact", "integration/kernel.py", "integration/bundles.py",
-            "structure/materials")
+_SOURCES = ("jit.py", "contact", "integration", "structure/materials")
+"""What the compiled module is built from: the whole integration folder (the loop, its forces,
+option slots, explicit step and peaks live in separate modules since issue 15; listing only
+kernel.py and bundles.py let an edited explicit step reuse a stale module)."""
 _loaded = {}
 
 

@@ -85,7 +85,7 @@ class RunResult:
                 hist.contact_force, hist.indentation, hist.indentation_rate,
                 hist.closed.astype(np.int8), meta)
         r.meta["impacts"] = r._impact_table()
-        r.meta["peaks"] = r._peaks()
+        r.meta["peaks"] = r._peaks(getattr(hist, "peaks", None))
         return r
 
     # ---- derived channels ----------------------------------------------------------------
@@ -210,35 +210,52 @@ class RunResult:
                                      self.velocity[:, :ns], self.acceleration[:, :ns],
                                      self.ground_acceleration, smooth)
 
-    def _peaks(self):
-        """Peaks of the continuous solution (femoat.dense_peaks): displacements and drifts
-        inside each step from the Hermite interpolant; accelerations (linear in a step) at the
-        step ends."""
-        imp = self.meta["impacts"]
-        ns = self.meta["n_struct"]
+    def _continuous(self, kernel):
+        """(base displacement, drifts, walls, absolute accelerations or None, base velocity or
+        None, indentation): from the solver's running peaks (``kernel``, the layout of
+        :mod:`femoat.integration.peaks`) when given, else from the recorded history."""
+        ns, nc = self.meta["n_struct"], len(self.meta["contact_names"])
+        if kernel is not None:
+            kernel = [float(x) for x in kernel]
+            return (kernel[0], kernel[1:ns], kernel[ns:ns + nc], kernel[ns + nc:2 * ns + nc],
+                    kernel[2 * ns + nc], kernel[2 * ns + nc + 1])
         wall = self.wall_displacement()
         acc = self.absolute_acceleration() if self.acceleration.shape[1] else None
         has_v = self.velocity.shape[1] > 0
         vel = self.velocity[:, :ns] if has_v else None
-        drift = self.story_drifts()
         drift_v = np.diff(vel, axis=1) if has_v else None
         wall_v = self.wall_velocity() if has_v else None
-        peak_drift = self._continuous_peaks(drift, drift_v)
-        peak_wall = self._continuous_peaks(wall, wall_v)
+        base = self._continuous_peaks(self.displacement[:, :1],
+                                      None if vel is None else vel[:, :1])[0]
+        velocity = (linear_accel_velocity_abs_max(self.time, vel[:, 0], self.acceleration[:, 0])
+                    if has_v and self.acceleration.shape[1] else None)
+        indentation = float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0
+        return (base, self._continuous_peaks(self.story_drifts(), drift_v),
+                self._continuous_peaks(wall, wall_v), self._acceleration_peaks(acc), velocity,
+                indentation)
+
+    def _peaks(self, kernel=None):
+        """Peaks of the continuous solution: displacements and drifts inside each step from the
+        Hermite interpolant; accelerations at the step ends, and inside the fifth-order steps
+        from the quintic interpolant. ``kernel``: the solver's own running peaks
+        (:mod:`femoat.integration.peaks`, the same interpolants sample by sample), else they are
+        read from the recorded history (:mod:`femoat.dense_peaks`)."""
+        imp = self.meta["impacts"]
+        base, peak_drift, peak_wall, peak_acc, velocity, indentation = self._continuous(kernel)
+        if self.acceleration.shape[1] == 0:
+            peak_acc = None
+        if self.velocity.shape[1] == 0 or self.acceleration.shape[1] == 0:
+            velocity = None
         hits = impact_summary(imp)
-        peak_acc = self._acceleration_peaks(acc)
         out = {
             **{k: hits[k] for k in ("peak_impact_force", "peak_impact_force_pos",
                                     "peak_impact_force_neg", "impacts_pos", "impacts_neg")},
-            "peak_base_displacement": self._continuous_peaks(
-                self.displacement[:, :1], None if vel is None else vel[:, :1])[0],
-            "peak_base_velocity": (linear_accel_velocity_abs_max(
-                self.time, vel[:, 0], self.acceleration[:, 0])
-                if has_v and self.acceleration.shape[1] else None),
+            "peak_base_displacement": base,
+            "peak_base_velocity": velocity,
             "peak_wall_displacement": max(peak_wall, default=0.0),
             **{f"peak_wall_displacement_{name}": peak_wall[c]
                for c, name in enumerate(self.meta["contact_names"])},
-            "peak_indentation": float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0,
+            "peak_indentation": indentation,
             "peak_impulse": hits["peak_impulse"],
             "peak_drift": peak_drift,
             "peak_drift_ratio": [x / h for x, h in

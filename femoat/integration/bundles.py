@@ -4,8 +4,8 @@ ahead-of-time module exports (:func:`femoat.integration.kernel.run_chunk` takes 
 * :class:`Model`: what is integrated (matrices, elements, contacts, the ground record, and
   ``Minv``, the inverse of the mass block the explicit step integrates); read only.
 * :class:`State`: what the loop advances (time, step, kinematics, committed element and contact
-  states, energies, counters, limit-state times); the loop's only persistent output besides the
-  recorder.
+  states, energies, counters, limit-state times, and the running peaks of
+  :mod:`femoat.integration.peaks`); the loop's only persistent output besides the recorder.
 * :class:`Settings`: the method, the step controller and the events (float and integer options,
   see the ``F_*``/``I_*`` indices of :mod:`femoat.integration.kernel`), the error scales and the
   limit states.
@@ -27,7 +27,7 @@ Model = namedtuple("Model", ["M", "C", "K", "r", "ag", "el_i", "el_j", "el_code"
                              "c_gap", "c_code", "c_P", "Minv"])
 State = namedtuple("State", ["t", "h", "ag_now", "u", "v", "a", "F", "el_S", "el_f", "el_d",
                              "el_W", "c_H", "c_f", "c_d", "c_W", "c_closed", "energy", "stats",
-                             "first_exceed"])
+                             "first_exceed", "pk", "pk_ring", "pk_n"])
 Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact", "err_ref",
                                    "scale_accel", "limits"])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",

@@ -61,6 +61,7 @@ from femoat.integration.forces import (  # noqa: E402, F401  (ground_accel, inte
     internal_force,
 )
 from femoat.integration import explicit  # noqa: E402
+from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: E402, F401
 from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
 from femoat.integration.options import (  # noqa: E402, F401  (the option slots, one home)
@@ -165,12 +166,12 @@ def _mark_last_sample(c, t, state, rec):
 
 
 @njit(cache=True, inline="always")
-def _sample_before_event(t, model, state, rec):
+def _sample_before_event(t, model, state, settings, rec):
     """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
     k = state.stats[S_NOUT]
     if t > 0.0 and (k == 0 or rec.t[k - 1] != t):
-        record(t, model, state, rec)
+        record(t, model, state, settings, rec)
 
 
 @njit(cache=True)
@@ -506,7 +507,7 @@ def _after_newton_failure(t, hh, model, state, settings, work, rec):
                 # aim short of the crossing so that the step converges and progresses
                 h_cross = min(h_cross, 0.9 * (-c_d[c] / dd0))
                 continue
-            _sample_before_event(t, model, state, rec)
+            _sample_before_event(t, model, state, settings, rec)
             _open_episode(c, dd0, state)
             _mark_last_sample(c, t, state, rec)
             started = True
@@ -751,7 +752,7 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
 
 
 @njit(cache=True, inline="always")
-def record(t, model, state, rec):
+def record(t, model, state, settings, rec):
     """Append the committed state at time ``t`` to the recorder (a channel whose buffer has no
     columns was not requested: nothing is written)."""
     u, v, a = state.u, state.v, state.a
@@ -780,6 +781,7 @@ def record(t, model, state, rec):
         rec.cv[k, c] = dd1
         rec.closed[k, c] = c_closed[c]
     state.stats[S_NOUT] = k + 1
+    push_sample(t, k, model, state, settings, rec)
 
 
 @njit(cache=True, inline="always")
@@ -798,7 +800,7 @@ def _declare_event(c, t, hh, h, model, state, settings, work, rec):
     """An event at the committed state (time ``t``): contact ``c``'s gap closed while it was
     already touching, or its crossing is closer than the smallest step. Open (or close) the
     episode there, restart, and return the step to redo (``h`` unless an episode opened)."""
-    _sample_before_event(t, model, state, rec)
+    _sample_before_event(t, model, state, settings, rec)
     if state.c_closed[c]:
         _close_episode(c, state)
     else:
@@ -920,7 +922,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         since_record += 1
         if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:
             since_record = 0
-            record(t, model, state, rec)
+            record(t, model, state, settings, rec)
         if _limit_reached(t, model, state, settings):
             return _stop(LIMIT_REACHED, t, h, state)
     return _stop(DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED, t, h,

@@ -9,6 +9,7 @@ import numpy as np
 from femoat.integration import explicit as ex
 from femoat.integration import kernel as kn
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
+from femoat.integration.peaks import size as pk_size
 from femoat.integration.settings import Integrator
 from femoat.structure.building import yield_drift
 from femoat.units import G
@@ -38,6 +39,8 @@ class RawHistory:
     limit_times: np.ndarray
     """First time [s] each limit of ``limits`` was exceeded (NaN: never)."""
     stopped_at_limit: bool
+    peaks: np.ndarray
+    """The running peaks of the continuous solution (:mod:`femoat.integration.peaks`)."""
 
 
 METHOD_CODES = {"newmark": kn.METHOD_NEWMARK, "dp5": kn.METHOD_DP5}
@@ -149,7 +152,9 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                   c_f=np.zeros(ncon), c_d=np.zeros(ncon), c_W=np.zeros(ncon),
                   c_closed=np.zeros(ncon, dtype=np.int64), energy=np.zeros(kn.N_ENERGY),
                   stats=np.zeros(kn.N_STATS, dtype=np.int64),
-                  first_exceed=np.full(limits.shape[1], -1.0))
+                  first_exceed=np.full(limits.shape[1], -1.0),
+                  pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
+                  pk_n=np.zeros(1, dtype=np.int64))
     settings = Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
                         err_ref=err_ref, scale_accel=scale_accel, limits=limits)
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
@@ -167,6 +172,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     state.a[:] = np.linalg.solve(packed.M, -packed.r * ag0 - state.F)
     a_initial, el_f_initial, el_d_initial = (state.a.copy(), state.el_f.copy(),
                                              state.el_d.copy())
+    kern.start_peaks(model, state, settings)
     for c in range(ncon):
         if state.c_d[c] > 0:
             raise ValueError(
@@ -206,6 +212,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         if status in (kn.DONE, kn.LIMIT_REACHED):
             break
         k = min(k + 1, chunks - 1)
+    kern.finish_peaks(model, state, settings, rec)
     cpu = _time.process_time() - cpu0
 
     stats = state.stats
@@ -233,6 +240,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                        state.c_W, state.c_closed, state.energy, e_initial),
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
         stopped_at_limit=bool(status == kn.LIMIT_REACHED),
+        peaks=state.pk.copy(),
     )
     hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
     return hist
@@ -325,7 +333,8 @@ def _jit_kernels():
     from femoat.structure.materials import material_commit, material_recoverable_energy
 
     return SimpleNamespace(run_chunk=kn.run_chunk, ground_accel=kn.ground_accel,
-                           internal_force=kn.internal_force, material_commit=material_commit,
+                           internal_force=kn.internal_force, start_peaks=kn.start_peaks,
+                           finish_peaks=kn.finish_peaks, material_commit=material_commit,
                            material_recoverable_energy=material_recoverable_energy,
                            contact_stored_energy=contact_stored_energy)
 

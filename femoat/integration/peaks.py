@@ -1,0 +1,242 @@
+"""Peaks of the continuous solution, kept inside the compiled loop as the samples are recorded.
+
+The same quantities and the same interpolants as :mod:`femoat.dense_peaks` reads from a
+recorded history (so a run's peaks need no Python pass over its history), sample by sample:
+
+* base displacement, each story's drift, each wall's displacement at its impact point: the
+  crest of the cubic Hermite interpolant of (x, ẋ) between consecutive samples;
+* the base mat's velocity: the crest of v with the acceleration linear in an interval;
+* the absolute accelerations of the base mat and the floors: the samples, and with the
+  fifth-order open phase the crest of the quintic Hermite interpolant of (u, v, a) on an
+  interval whose two samples have every gap open;
+* the largest indentation, at the samples.
+
+An interval is judged once the sample after it is recorded: an event at a committed state may
+still change the contact flags of the last sample (``kernel._mark_last_sample``). The last
+interval is judged by :func:`finish_peaks` after the loop.
+
+Layout of ``state.pk`` for ns building DOFs and nc contacts: ``[0]`` base displacement, ``[1:ns]``
+story drifts, ``[ns:ns+nc]`` wall displacements [in], ``[ns+nc:2ns+nc]`` absolute
+accelerations [in/s²] (base, floors), ``[2ns+nc]`` base velocity [in/s], ``[2ns+nc+1]``
+indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g);
+``state.pk_n[0]`` how many.
+"""
+
+import numpy as np
+
+from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
+from femoat.jit import njit
+
+
+def size(ns, nc):
+    """Length of the peaks array for ns building DOFs and nc contacts."""
+    return 2 * ns + nc + 2
+
+
+@njit(cache=True, inline="always")
+def _roots_max(qa, qb, qc, x0, d0, x1, d1, best):
+    """max(best, |cubic Hermite x(θ)|) at the roots in (0, 1) of qa·θ² + qb·θ + qc (the same
+    stable pair as ``dense_peaks._roots_in_unit_interval``)."""
+    scale = max(max(abs(qa), abs(qb)), abs(qc))
+    if abs(qa) <= 1e-12 * scale:
+        if qb == 0.0:
+            return best
+        roots = (-qc / qb, np.nan)
+    else:
+        disc = qb * qb - 4.0 * qa * qc
+        if not disc >= 0.0:
+            return best
+        sq = np.sqrt(disc)
+        q = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
+        roots = (q / qa, qc / q)
+    for s in roots:
+        if s > 0.0 and s < 1.0:
+            s2 = s * s
+            s3 = s2 * s
+            x = ((2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * d0
+                 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * d1)
+            if abs(x) > best:
+                best = abs(x)
+    return best
+
+
+@njit(cache=True, inline="always")
+def _hermite_crest(h, x0, v0, x1, v1, best):
+    """max(best, the crest of the cubic Hermite interpolant inside an interval of length h)."""
+    d0, d1 = h * v0, h * v1
+    # |x(θ)| ≤ max(|x0|, |x1|) + 4/27·(|d0| + |d1|) (the Hermite basis): no crest above best
+    if max(abs(x0), abs(x1)) + (4.0 / 27.0) * (abs(d0) + abs(d1)) <= best:
+        return best
+    qa = 6.0 * (x0 - x1) + 3.0 * (d0 + d1)
+    qb = 6.0 * (x1 - x0) - 4.0 * d0 - 2.0 * d1
+    return _roots_max(qa, qb, d0, x0, d0, x1, d1, best)
+
+
+@njit(cache=True, inline="always")
+def _cubic_max(al0, al1, al2, al3, best):
+    """max(best, |α0 + α1θ + α2θ² + α3θ³|) at its stationary points in (0, 1)."""
+    qa, qb, qc = 3.0 * al3, 2.0 * al2, al1
+    scale = max(max(abs(qa), abs(qb)), abs(qc))
+    if abs(qa) <= 1e-12 * scale:
+        if qb == 0.0:
+            return best
+        roots = (-qc / qb, np.nan)
+    else:
+        disc = qb * qb - 4.0 * qa * qc
+        if not disc >= 0.0:
+            return best
+        sq = np.sqrt(disc)
+        q = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
+        roots = (q / qa, qc / q)
+    for s in roots:
+        if s > 0.0 and s < 1.0:
+            val = abs(al0 + s * (al1 + s * (al2 + s * al3)))
+            if val > best:
+                best = val
+    return best
+
+
+@njit(cache=True, inline="always")
+def _quintic_accel_crest(h, u0, v0, a0, ag0, u1, v1, a1, ag1, best):
+    """max(best, the crest of a(θ) + a_g(θ) from the quintic Hermite interpolant of
+    (u, v, a)); an interval too short for its coefficients keeps its samples (as in
+    ``dense_peaks.quintic_accel_abs_max``)."""
+    h2 = h * h
+    c1 = h * v0
+    c2 = 0.5 * h2 * a0
+    r0 = u1 - u0 - c1 - c2
+    r1 = h * v1 - c1 - 2.0 * c2
+    r2 = h2 * a1 - 2.0 * c2
+    al0 = a0 + ag0
+    al1 = 6.0 * (10.0 * r0 - 4.0 * r1 + 0.5 * r2) / h2 + (ag1 - ag0)
+    al2 = 12.0 * (-15.0 * r0 + 7.0 * r1 - r2) / h2
+    al3 = 20.0 * (6.0 * r0 - 3.0 * r1 + 0.5 * r2) / h2
+    roundoff = 120.0 * 2.220446049250313e-16 * (abs(u0) + abs(u1)) / h2
+    if roundoff > 1e-6 * (abs(al0) + abs(a1) + 1.0):
+        return best
+    if abs(al0) + abs(al1) + abs(al2) + abs(al3) <= best:  # |cubic| ≤ Σ|α_k| on [0, 1]
+        return best
+    return _cubic_max(al0, al1, al2, al3, best)
+
+
+@njit(cache=True, inline="always")
+def _wall(c_B, c, x, ns):
+    """A wall's displacement (or velocity) at its impact point: −Σ_i b_ci·x_i over its DOFs."""
+    w = 0.0
+    for i in range(ns, x.size):
+        if c_B[c, i] != 0.0:
+            w += -c_B[c, i] * x[i]
+    return w
+
+
+@njit(cache=True, inline="always")
+def _endpoint(t, model, settings, u, v, a, ag, c_d, pk):
+    """The sample's own values into the running maxima."""
+    ns = settings.iopt[I_N_STRUCT]
+    nc = model.c_gap.size
+    pk[0] = max(pk[0], abs(u[0]))
+    for k in range(1, ns):
+        pk[k] = max(pk[k], abs(u[k] - u[k - 1]))
+    for c in range(nc):
+        pk[ns + c] = max(pk[ns + c], abs(_wall(model.c_B, c, u, ns)))
+    for i in range(ns):
+        pk[ns + nc + i] = max(pk[ns + nc + i], abs(a[i] + ag))
+    pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v[0]))
+    for c in range(nc):
+        pk[2 * ns + nc + 1] = max(pk[2 * ns + nc + 1], c_d[c])
+
+
+@njit(cache=True, inline="always")
+def _interval(smooth, model, settings, ring, pk):
+    """The crests inside the interval between the two samples of ``ring``."""
+    n = (ring.shape[1] - 2) // 3
+    ns = settings.iopt[I_N_STRUCT]
+    nc = model.c_gap.size
+    t0, t1 = ring[0, 0], ring[1, 0]
+    h = t1 - t0
+    if not h > 0.0:
+        return
+    u0, u1 = ring[0, 1:1 + n], ring[1, 1:1 + n]
+    v0, v1 = ring[0, 1 + n:1 + 2 * n], ring[1, 1 + n:1 + 2 * n]
+    a0, a1 = ring[0, 1 + 2 * n:1 + 3 * n], ring[1, 1 + 2 * n:1 + 3 * n]
+    ag0, ag1 = ring[0, 1 + 3 * n], ring[1, 1 + 3 * n]
+    pk[0] = _hermite_crest(h, u0[0], v0[0], u1[0], v1[0], pk[0])
+    for k in range(1, ns):
+        pk[k] = _hermite_crest(h, u0[k] - u0[k - 1], v0[k] - v0[k - 1], u1[k] - u1[k - 1],
+                               v1[k] - v1[k - 1], pk[k])
+    c_B = model.c_B
+    for c in range(nc):
+        pk[ns + c] = _hermite_crest(h, _wall(c_B, c, u0, ns), _wall(c_B, c, v0, ns),
+                                    _wall(c_B, c, u1, ns), _wall(c_B, c, v1, ns), pk[ns + c])
+    # the base velocity with the acceleration linear inside (Newmark's own interpolant)
+    if a0[0] != a1[0]:
+        th = a0[0] / (a0[0] - a1[0])
+        if th > 0.0 and th < 1.0:
+            pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v0[0] + 0.5 * h * a0[0] * th))
+    if smooth and settings.iopt[I_METHOD] == METHOD_DP5:
+        for i in range(ns):
+            pk[ns + nc + i] = _quintic_accel_crest(h, u0[i], v0[i], a0[i], ag0, u1[i], v1[i],
+                                                   a1[i], ag1, pk[ns + nc + i])
+
+
+@njit(cache=True, inline="always")
+def _open(closed_row):
+    for c in range(closed_row.size):
+        if closed_row[c]:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _keep(t, model, state, settings):
+    """The committed state at time ``t`` as the ring's newest sample, and its own values."""
+    ring = state.pk_ring
+    n = state.u.size
+    row = state.pk_n[0]
+    ring[row, 0] = t
+    for i in range(n):
+        ring[row, 1 + i] = state.u[i]
+        ring[row, 1 + n + i] = state.v[i]
+        ring[row, 1 + 2 * n + i] = state.a[i]
+    ring[row, 1 + 3 * n] = state.ag_now[0]
+    state.pk_n[0] = row + 1
+    _endpoint(t, model, settings, state.u, state.v, state.a, state.ag_now[0], state.c_d,
+              state.pk)
+
+
+@njit(cache=True, inline="always")
+def _judge_older(k, model, state, settings, rec):
+    """With two samples kept (recorder indices k − 2 and k − 1, −1 the initial state with every
+    gap open), judge the interval between them and keep only the newer."""
+    if state.pk_n[0] < 2:
+        return
+    ring = state.pk_ring
+    open0 = True if k - 2 < 0 else _open(rec.closed[k - 2])
+    open1 = True if k - 1 < 0 else _open(rec.closed[k - 1])
+    _interval(open0 and open1, model, settings, ring, state.pk)
+    for j in range(ring.shape[1]):
+        ring[0, j] = ring[1, j]
+    state.pk_n[0] = 1
+
+
+@njit(cache=True, inline="always")
+def push_sample(t, k, model, state, settings, rec):
+    """Sample ``k`` of the recorder (time ``t``, the committed state) was just written: judge
+    the interval before the previous sample (its flags are final now), then keep this one."""
+    _judge_older(k, model, state, settings, rec)
+    _keep(t, model, state, settings)
+
+
+@njit(cache=True)
+def start_peaks(model, state, settings):
+    """Reset the running maxima and keep the initial state (time 0) as the first sample."""
+    for j in range(state.pk.size):
+        state.pk[j] = 0.0
+    state.pk_n[0] = 0
+    _keep(0.0, model, state, settings)
+
+
+@njit(cache=True)
+def finish_peaks(model, state, settings, rec):
+    """Judge the last interval (after the loop; every flag is final)."""
+    _judge_older(state.stats[S_NOUT], model, state, settings, rec)
