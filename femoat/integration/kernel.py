@@ -165,7 +165,7 @@ def _mark_last_sample(c, t, state, rec):
         rec.closed[k - 1, c] = state.c_closed[c]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _sample_before_event(t, model, state, settings, rec):
     """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
