@@ -84,7 +84,7 @@ def ensure(report=print):
     if not enabled() or module_path().is_file():
         return None
     report("femoat: compiling the solver ahead of time so that later runs start fast (once; "
-           "about 25 s; FEMOAT_AOT=0 skips this)")
+           "about 45 s; FEMOAT_AOT=0 skips this)")
     try:
         path = build()
     except Exception as err:  # a missing compiler must not fail the user's run

@@ -12,7 +12,7 @@
   Each finished task's rows are written at once, so an interruption (Ctrl-C, a killed worker
   or client) loses at most the tasks in flight.
 * Workers use the ahead-of-time kernels (:mod:`femoat.aot`), built once in the client if
-  missing (about 25 s, once per machine); without them they fall back to numba's JIT.
+  missing (about 45 s, once per machine); without them they fall back to numba's JIT.
 * On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
   path (their samples are checked against the definition).
 """
