@@ -20,7 +20,10 @@ The step (:func:`explicit_step`), for the building DOFs i < nb (``I_N_EXPLICIT``
   displacement error in its own coordinate (a floor against the floor below) against
   rtol·scale, and each DOF's acceleration error M⁻¹·(K_T·e_u + C_T·e_v) against rtol·scale_accel;
 * input and viscous energies by the method's own quadrature (the fifth-order weights on the
-  stages' powers), so the energy balance is as accurate as the solution.
+  stages' powers); element work by the driver's trapezoidal rule, exact on a branch linear in
+  the deformation (every material but the velocity-dependent friction, whose work is then
+  second order in the step). The energy balance then measures the method's truncation, not
+  round-off as Newmark's trapezoidal balance does.
 
 The ground acceleration is linear inside a step because steps end on record samples (the
 driver's :func:`~femoat.integration.kernel._step_end`).

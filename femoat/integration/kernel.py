@@ -195,6 +195,22 @@ def _hermite(th, h, x0, dx0, x1, dx1):
     return x, dx
 
 
+@njit(cache=True, inline="always")
+def _quintic(th, h, x0, dx0, ddx0, x1, dx1, ddx1):
+    """The quintic Hermite interpolant of a step of length ``h`` (values, first and second time
+    derivatives at its ends) at fraction ``th`` (the coefficients of
+    :func:`femoat.dense_peaks.quintic_accel_abs_max`)."""
+    c1 = h * dx0
+    c2 = 0.5 * h * h * ddx0
+    r0 = x1 - x0 - c1 - c2
+    r1 = h * dx1 - c1 - 2.0 * c2
+    r2 = h * h * ddx1 - 2.0 * c2
+    c3 = 10.0 * r0 - 4.0 * r1 + 0.5 * r2
+    c4 = -15.0 * r0 + 7.0 * r1 - r2
+    c5 = 6.0 * r0 - 3.0 * r1 + 0.5 * r2
+    return x0 + th * (c1 + th * (c2 + th * (c3 + th * (c4 + th * c5))))
+
+
 @njit(cache=True)
 def _crossing(d0, dd0, d1, dd1, h):
     """Fraction θ in [0, 1] where the cubic Hermite interpolant of δ crosses zero.
@@ -537,8 +553,9 @@ def find_events(hh, look_inside, model, state, settings, work):
 
     ``look_inside`` (the long steps of the explicit method): a gap open at both ends of the
     step may still close inside it, near a turning point of δ; where δ approaches at the start,
-    recedes at the end and its interpolant's crest (from δ, δ̇ and δ̈ at the ends) is positive,
-    the step is shortened to end at the crest, where the ordinary crossing search takes over."""
+    recedes at the end and its quintic interpolant (δ, δ̇ and δ̈ at the ends) crests above
+    gap_tol, the step is shortened to end at the crest, where the ordinary crossing search
+    takes over."""
     gap_tol = settings.fopt[F_GAPTOL]
     c_B, c_closed = model.c_B, state.c_closed
     theta = 2.0
@@ -571,10 +588,12 @@ def find_events(hh, look_inside, model, state, settings, work):
                 dda0 += c_B[c, i] * state.a[i]
                 dda1 += c_B[c, i] * work.a[i]
             th = _crossing(dd0, dda0, dd1, dda1, hh)
-            crest, _ = _hermite(th, hh, d0, dd0, d1, dd1)
+            crest = _quintic(th, hh, d0, dd0, dda0, d1, dd1, dda1)
             # (a crest within gap_tol of the wall is a touch, not an impact; a crest at the
-            # step's very end is the one the step was already shortened to)
-            if crest > gap_tol and 0.0 < th < min(theta, 1.0 - KINK_RESOLUTION):
+            # step's very end is the one the step was already shortened to; one closer than the
+            # smallest step to the start is left to the next step, never declared here)
+            if crest > gap_tol and 0.0 < th < min(theta, 1.0 - KINK_RESOLUTION) \
+                    and th * hh >= settings.fopt[F_HMIN]:
                 theta = th
                 c_min = c
     return theta, c_min, event_now
@@ -913,7 +932,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             _restart(model, state, work)
         stats[S_STEPS] += 1
         if explicit_now:
-            h = hh * explicit.step_factor(err)
+            h = max(hh * explicit.step_factor(err), hmin)
         else:
             h = hh * (GROW_MAX if err < 1e-12 else min(GROW_MAX, _step_factor(err)))
         now_closed = _any_closed(c_closed)

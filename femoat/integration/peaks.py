@@ -22,10 +22,16 @@ indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g)
 ``state.pk_n[0]`` how many.
 """
 
+from pathlib import Path
+
 import numpy as np
 
-from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
 from femoat.jit import njit
+from femoat.numba_cache import drop_stale_cache
+
+drop_stale_cache(__file__, [Path(__file__).resolve().parent / "options.py"])
+
+from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT  # noqa: E402
 
 
 def size(ns, nc):
@@ -34,22 +40,26 @@ def size(ns, nc):
 
 
 @njit(cache=True, inline="always")
-def _roots_max(qa, qb, qc, x0, d0, x1, d1, best):
-    """max(best, |cubic Hermite x(θ)|) at the roots in (0, 1) of qa·θ² + qb·θ + qc (the same
-    stable pair as ``dense_peaks._roots_in_unit_interval``)."""
+def _unit_roots(qa, qb, qc):
+    """The (up to two) real roots of qa·θ² + qb·θ + qc, NaN where there is none (the stable
+    pair of ``dense_peaks._roots_in_unit_interval``; the caller keeps those in (0, 1))."""
     scale = max(max(abs(qa), abs(qb)), abs(qc))
     if abs(qa) <= 1e-12 * scale:
         if qb == 0.0:
-            return best
-        roots = (-qc / qb, np.nan)
-    else:
-        disc = qb * qb - 4.0 * qa * qc
-        if not disc >= 0.0:
-            return best
-        sq = np.sqrt(disc)
-        q = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
-        roots = (q / qa, qc / q)
-    for s in roots:
+            return np.nan, np.nan
+        return -qc / qb, np.nan
+    disc = qb * qb - 4.0 * qa * qc
+    if not disc >= 0.0:
+        return np.nan, np.nan
+    sq = np.sqrt(disc)
+    q = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
+    return q / qa, qc / q
+
+
+@njit(cache=True, inline="always")
+def _roots_max(qa, qb, qc, x0, d0, x1, d1, best):
+    """max(best, |cubic Hermite x(θ)|) at the roots in (0, 1) of qa·θ² + qb·θ + qc."""
+    for s in _unit_roots(qa, qb, qc):
         if s > 0.0 and s < 1.0:
             s2 = s * s
             s3 = s2 * s
@@ -75,20 +85,7 @@ def _hermite_crest(h, x0, v0, x1, v1, best):
 @njit(cache=True, inline="always")
 def _cubic_max(al0, al1, al2, al3, best):
     """max(best, |α0 + α1θ + α2θ² + α3θ³|) at its stationary points in (0, 1)."""
-    qa, qb, qc = 3.0 * al3, 2.0 * al2, al1
-    scale = max(max(abs(qa), abs(qb)), abs(qc))
-    if abs(qa) <= 1e-12 * scale:
-        if qb == 0.0:
-            return best
-        roots = (-qc / qb, np.nan)
-    else:
-        disc = qb * qb - 4.0 * qa * qc
-        if not disc >= 0.0:
-            return best
-        sq = np.sqrt(disc)
-        q = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
-        roots = (q / qa, qc / q)
-    for s in roots:
+    for s in _unit_roots(3.0 * al3, 2.0 * al2, al1):
         if s > 0.0 and s < 1.0:
             val = abs(al0 + s * (al1 + s * (al2 + s * al3)))
             if val > best:
@@ -99,8 +96,9 @@ def _cubic_max(al0, al1, al2, al3, best):
 @njit(cache=True, inline="always")
 def _quintic_accel_crest(h, u0, v0, a0, ag0, u1, v1, a1, ag1, best):
     """max(best, the crest of a(θ) + a_g(θ) from the quintic Hermite interpolant of
-    (u, v, a)); an interval too short for its coefficients keeps its samples (as in
-    ``dense_peaks.quintic_accel_abs_max``)."""
+    (u, v, a)); an interval too short for its coefficients keeps its samples (the same
+    coefficients and test as ``dense_peaks.quintic_accel_abs_max``, tied by
+    tests/test_kernel_peaks.py)."""
     h2 = h * h
     c1 = h * v0
     c2 = 0.5 * h2 * a0
