@@ -864,12 +864,14 @@ def run_chunk(t_stop, model, state, settings, work, rec):
     since_record = stalls = 0
     shortened = False
     landing = -1  # the contact whose located separation the shortened step lands on
+    h_cruise = h  # the explicit method's step before landings and sample cuts
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
         stalls += 1
         if stalls > 100000:  # no step accepted after 100000 attempts: report, don't spin
             return _stop(STEP_TOO_SMALL, t, h, state)
         if stats[S_NOUT] >= rec.t.size:
             return _stop(BUFFER_FULL, t, h, state)
+        h_asked = h
         hh, t1 = _step_end(t, h, t_goal, shortened, fopt, model.ag.size)
         ag1 = ground_accel(model.ag, fopt[F_DTREC], t1)
         any_closed = _any_closed(c_closed)
@@ -926,16 +928,26 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         toggled, v_close = accept(ag1, landing, explicit_now, model, state, settings, work)
         t = t1
         stalls = 0
+        cut_short = shortened or hh < h_asked * (1.0 - 1e-12)
         shortened = False
         landing = -1
         if toggled:
             _restart(model, state, work)
         stats[S_STEPS] += 1
+        now_closed = _any_closed(c_closed)
         if explicit_now:
             h = max(hh * explicit.step_factor(err), hmin)
+            # a step cut short (landed on a kink, a turning point or an event, or ending on a
+            # sample) says nothing about the step the solution allows: resume the cruising
+            # step (the error control rejects it once if it has become too long)
+            if cut_short:
+                h = max(h, h_cruise)
+            else:
+                h_cruise = h
         else:
             h = hh * (GROW_MAX if err < 1e-12 else min(GROW_MAX, _step_factor(err)))
-        now_closed = _any_closed(c_closed)
+            if method == METHOD_DP5 and toggled and not now_closed:
+                h = max(h, h_cruise)  # back to the open phase: its cruising step
         if toggled and now_closed:
             h = min(h, _first_contact_step(v_close, H_START * h_contact, h_contact, gap_tol))
         since_record += 1
