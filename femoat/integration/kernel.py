@@ -51,6 +51,7 @@ drop_stale_cache(__file__, [*sorted((_PKG / "integration").glob("*.py")),
 
 from femoat.contact.kernels import (  # noqa: E402
     contact_closure,
+    contact_force,
     recorded_force,
     step_commit,
 )
@@ -157,12 +158,17 @@ def _close_episode(c, state):
 
 
 @njit(cache=True, inline="always")
-def _mark_last_sample(c, t, state, rec):
+def _mark_last_sample(c, t, model, state, rec):
     """An episode opened or closed at the committed state: if that state (time ``t``) is the
-    last recorded sample, record the contact's new flag there."""
+    last recorded sample, record the contact's new flag there, and for an opened episode the
+    law's force at that state (recorded before, with the episode not yet open, as zero; within
+    gap_tol of the wall it is tiny but not zero)."""
     k = state.stats[S_NOUT]
     if k > 0 and rec.t[k - 1] == t:
         rec.closed[k - 1, c] = state.c_closed[c]
+        if state.c_closed[c] and rec.cf[k - 1, c] == 0.0 and state.c_d[c] > 0.0:
+            rec.cf[k - 1, c] = contact_force(model.c_code[c], model.c_P[c], state.c_H[c],
+                                             state.c_d[c], _rate(model.c_B, c, state.v))[0]
 
 
 @njit(cache=True)
@@ -525,7 +531,7 @@ def _after_newton_failure(t, hh, model, state, settings, work, rec):
                 continue
             _sample_before_event(t, model, state, settings, rec)
             _open_episode(c, dd0, state)
-            _mark_last_sample(c, t, state, rec)
+            _mark_last_sample(c, t, model, state, rec)
             started = True
             v_close = max(v_close, dd0)
     if not started and h_cross < 0.999 * hh:
@@ -827,7 +833,7 @@ def _declare_event(c, t, hh, h, model, state, settings, work, rec):
         _open_episode(c, max(dd0, 0.0), state)
         h_contact, gap_tol = settings.fopt[F_HCONTACT], settings.fopt[F_GAPTOL]
         h = min(hh, _first_contact_step(dd0, H_START * h_contact, h_contact, gap_tol))
-    _mark_last_sample(c, t, state, rec)
+    _mark_last_sample(c, t, model, state, rec)
     _restart(model, state, work)
     return h
 
