@@ -65,8 +65,6 @@ DP_E = np.array([71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 /
 """b − b̂: the fifth- minus the embedded fourth-order weights (the error estimate)."""
 N_STAGES = 7
 
-ORDER = 5
-"""Order of the solution the step keeps."""
 ERROR_EXPONENT = -1.0 / 5.0
 """h ∝ err^(−1/5): the embedded estimate is O(h⁵)."""
 SAFETY = 0.9

@@ -85,7 +85,7 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
     at closure), so that the step after a located closure starts from the right force.
     """
-    M, C, K = model.M, model.C, model.K
+    C, K = model.C, model.K
     el_i, el_j, el_code, el_P = model.el_i, model.el_j, model.el_code, model.el_P
     c_B, c_gap, c_code, c_P = model.c_B, model.c_gap, model.c_code, model.c_P
     n = u.size

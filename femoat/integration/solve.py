@@ -134,10 +134,10 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             raise ValueError(f"limits must hold 2 x {nel + 2 * ncon} positive bounds (elements, "
                              "wall displacements, contact forces; inf for none).")
         limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
-    n_explicit = _uncoupled_size(packed, True)
+    n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
     iopt = np.zeros(kn.N_IOPT, dtype=np.int64)
     iopt[kn.I_MAXIT], iopt[kn.I_RECORD_EVERY] = integ.max_newton, integ.record_every
-    iopt[kn.I_N_COUPLED], iopt[kn.I_LIMITS] = _uncoupled_size(packed, lazy), limit_mode
+    iopt[kn.I_N_COUPLED], iopt[kn.I_LIMITS] = n_explicit if lazy else n, limit_mode
     iopt[kn.I_N_STRUCT], iopt[kn.I_N_EXPLICIT] = packed.n_struct, n_explicit
     iopt[kn.I_METHOD] = METHOD_CODES[integ.method]
 
@@ -339,11 +339,12 @@ def _jit_kernels():
                            contact_stored_energy=contact_stored_energy)
 
 
-def _uncoupled_size(packed, lazy):
-    """Size of the block solved densely while all contacts are open: the structural DOFs, if
-    every wall DOF has a diagonal row and column in M, C and K; otherwise all DOFs."""
+def _uncoupled_size(packed):
+    """Size of the block solved densely (Newmark) or stepped explicitly (dp5) while all
+    contacts are open: the structural DOFs, if every wall DOF has a diagonal row and column in
+    M, C and K; otherwise all DOFs."""
     n, ns = packed.n, packed.n_struct
-    if not lazy or ns == n:
+    if ns == n:
         return n
     for A in (packed.M, packed.C, packed.K):
         W = A[ns:, ns:]
