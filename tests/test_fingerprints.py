@@ -22,6 +22,16 @@ def test_jit_runs_match_the_stored_fingerprints(motion):
         assert current[name] == stored[name], name
 
 
+def test_dp5_runs_match_the_stored_fingerprints():
+    # The default method's 20 full paper runs, stored before issue 16's refactor of the shared
+    # machinery (limits, compile plumbing): a refactor must not change one of its operations.
+    stored = load("dp5")["full"]
+    current = compute(quick=False, method="dp5")
+    assert current.keys() == stored.keys()
+    for name in stored:
+        assert current[name] == stored[name], name
+
+
 def test_aot_runs_match_the_stored_fingerprints(aot_cache):
     code = ("import json, sys; sys.path.insert(0, 'tests'); from fingerprints import compute; "
             "print(json.dumps({m: compute(m == 'quick', backend='aot') "
