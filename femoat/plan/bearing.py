@@ -48,7 +48,7 @@ from femoat.structure.materials.friction_pendulum import N_PARAMS, FrictionPendu
 
 N_STATE = 6
 _W, _R, _UY, _MU_SLOW, _MU_FAST, _A, _VREG = range(N_PARAMS)
-_UX, _UYC, _ZX, _ZY, _VX, _VY = range(N_STATE)  # _UYC: committed u_y (y displacement), not u_y
+_UCX, _UCY, _ZCX, _ZCY, _VCX, _VCY = range(N_STATE)
 
 
 @njit(cache=True)
@@ -67,8 +67,8 @@ def plan_friction_coefficient(p, vx, vy):
 @njit(cache=True)
 def _z(p, s, ux, uy):
     """Hysteretic vector (z_x, z_y) after radial return, and |z_trial|."""
-    zx = s[_ZX] + (ux - s[_UX]) / p[_UY]
-    zy = s[_ZY] + (uy - s[_UYC]) / p[_UY]
+    zx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
+    zy = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
     norm = np.sqrt(zx * zx + zy * zy)
     if norm > 1.0:
         return zx / norm, zy / norm, norm
@@ -107,21 +107,21 @@ def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
 def plan_friction_pendulum_commit(p, s, ux, uy, vx, vy):
     """Advance the committed state ``s`` in place to the converged (ux, uy), (vx, vy)."""
     zx, zy, _ = _z(p, s, ux, uy)
-    s[_UX] = ux
-    s[_UYC] = uy
-    s[_ZX] = zx
-    s[_ZY] = zy
-    s[_VX] = vx
-    s[_VY] = vy
+    s[_UCX] = ux
+    s[_UCY] = uy
+    s[_ZCX] = zx
+    s[_ZCY] = zy
+    s[_VCX] = vx
+    s[_VCY] = vy
 
 
 @njit(cache=True)
 def plan_friction_pendulum_energy(p, s):
     """Recoverable energy [kip·in] at the committed state (module docstring)."""
     w = p[_W]
-    mu, _, _ = plan_friction_coefficient(p, s[_VX], s[_VY])
-    u2 = s[_UX] * s[_UX] + s[_UYC] * s[_UYC]
-    z2 = s[_ZX] * s[_ZX] + s[_ZY] * s[_ZY]
+    mu, _, _ = plan_friction_coefficient(p, s[_VCX], s[_VCY])
+    u2 = s[_UCX] * s[_UCX] + s[_UCY] * s[_UCY]
+    z2 = s[_ZCX] * s[_ZCX] + s[_ZCY] * s[_ZCY]
     return 0.5 * w / p[_R] * u2 + 0.5 * mu * w * p[_UY] * z2
 
 
