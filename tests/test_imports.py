@@ -19,8 +19,8 @@ LAYERS = [
     ("femoat.contact", "femoat.structure.materials"),
     # 2 moat walls (FE models, reduction, presets)
     ("femoat.walls",),
-    # 3 the building and its pounding model
-    ("femoat.structure",),
+    # 3 the building and its pounding model (in plan: femoat.plan)
+    ("femoat.structure", "femoat.plan"),
     # 4 time integration: the building solver, the single-impact solver
     ("femoat.integration", "femoat.impact"),
     # 5 runs and what they produce; the ahead-of-time build; the OpenSees twin

@@ -6,6 +6,14 @@ Acceleration is carried in g (as published) on a uniform time grid t = n*dt; see
 
 from .erzincan import PAPER_PGA, erzincan_ns, erzincan_paper
 from .fema import FEMA_P695_SETS, FemaP695Record, fema_p695_record, fema_p695_records
+from .pair import (
+    RecordPair,
+    RotDSpectrum,
+    fema_p695_pair,
+    p695_anchor_factor,
+    read_at2_pair,
+    rotd_spectrum,
+)
 from .peer import RecordFormatError, read_at2, read_text
 from .record import GroundMotion
 from .spectrum import ResponseSpectrum, response_spectrum
@@ -16,12 +24,18 @@ __all__ = [
     "FemaP695Record",
     "GroundMotion",
     "RecordFormatError",
+    "RecordPair",
     "ResponseSpectrum",
+    "RotDSpectrum",
     "erzincan_ns",
     "erzincan_paper",
+    "fema_p695_pair",
     "fema_p695_record",
     "fema_p695_records",
+    "p695_anchor_factor",
     "read_at2",
+    "read_at2_pair",
     "read_text",
     "response_spectrum",
+    "rotd_spectrum",
 ]
