@@ -315,8 +315,8 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
     law : ContactLaw  the contact law (its stiffness sets the contact time t_c)
     damping_ratio : float  ξ [-] of every mode unless the table gives ``damping_ratio``
     """
+    from femoat.walls import kinds
     from femoat.walls.fe import load_geometry
-    from femoat.walls.kinds import KINDS, build_model, kind_of_mesh
     from femoat.walls.fe.mesh_io import read_mesh
     from femoat.walls.modal import ModalWall, contact_time
 
@@ -327,21 +327,17 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
         raise ValueError("[walls.fe] needs geometry = 'wall.toml' (material, size, fixity, "
                          "impact height; see femoat wall --help).")
     geometry = load_geometry(_resolve(_text(d, "geometry", "wall.toml", where), base_dir))
-    mesh = None
-    kind = _text(d, "model", "beam", where)
-    if "mesh" in d:
-        mesh = read_mesh(_resolve(_text(d, "mesh", "wall.vtu", where), base_dir))
-        if "model" in d and kind_of_mesh(mesh) != kind:
-            raise ValueError(f"[walls.fe] mesh is {mesh.dim()}D, which makes a "
-                             f"{kind_of_mesh(mesh)} model, not model = {kind!r}.")
-        kind = kind_of_mesh(mesh)
-    if kind not in KINDS:
-        raise ValueError(f"[walls.fe] model = {kind!r}: use 'beam', 'plane' or 'solid'.")
+    name = _text(d, "model", kinds.default_kind().name, where) if "model" in d else None
+    mesh = read_mesh(_resolve(_text(d, "mesh", "wall.vtu", where), base_dir)) if "mesh" in d \
+        else None
+    with _in(where):
+        kind = kinds.kind_of_mesh(mesh, name) if mesh is not None else \
+            kinds.wall_kind(name or kinds.default_kind().name)
     modes = _integer(d, "modes", 8, where) if "modes" in d else None
     flexibility = _number(d, "flexibility", 0.99, where)
     zeta = _number(d, "damping_ratio", damping_ratio, where)
     residual = _flag(d, "residual", True, where)
-    model = build_model(kind, geometry, mesh=mesh)
+    model = kind.build(geometry, mesh=mesh)
     # the contact time from the wall's own M1: one modal analysis per wall
     t_c = lambda result: contact_time(law, base_mass, result.M1)  # noqa: E731
     return ModalWall.from_fe(model, n_modes=modes, contact_duration=t_c,
