@@ -183,7 +183,7 @@ def test_a_bad_row_or_registry_is_refused_by_name(monkeypatch):
         WallKind("upside", axes=(2, 0), builder=plane_strain_model)
     with pytest.raises(ValueError, match="views"):
         WallKind("odd", axes=(0, 2), builder=plane_strain_model, views=("top",))
-    with pytest.raises(ValueError, match=r"model = 'shell': use 'beam', 'plane', 'solid'"):
+    with pytest.raises(ValueError, match=r"model = 'shell': use 'beam', 'plane' or 'solid'"):
         kinds.wall_kind("shell")
     monkeypatch.setattr(kinds, "KINDS", (*kinds.KINDS, kinds.KINDS[0]))
     with pytest.raises(ValueError, match="distinct names"):

@@ -116,7 +116,8 @@ def names():
 
 
 def _listed(kinds):
-    return ", ".join(repr(k.name) for k in kinds)
+    quoted = [repr(k.name) for k in kinds]
+    return quoted[0] if len(quoted) == 1 else f"{', '.join(quoted[:-1])} or {quoted[-1]}"
 
 
 def wall_kind(name):
