@@ -27,7 +27,18 @@ KEYS = {
 
 @dataclass(frozen=True)
 class Scenario:
-    """A parsed scenario: the model, the motion, the integrator and output options."""
+    """A parsed scenario: the model, the motion, the integrator and output options.
+
+    model : PoundingModel  the building and its walls
+    motion : GroundMotion  scaled and time-scaled
+    integrator : Integrator
+    extra_time : float  [s] free vibration after the record
+    collapse : CollapseCriteria or None  (None: no ``[collapse]`` table)
+    output_folder : Path  where ``femoat run`` writes
+    figures : bool  whether it draws the figures
+    source : dict  the parsed TOML document
+    wall_label : str  the walls' name in reports: the preset, with "FE" for a finite-element wall
+    """
 
     model: PoundingModel
     motion: object
@@ -37,8 +48,7 @@ class Scenario:
     output_folder: Path
     figures: bool
     source: dict
-    wall_label: str = "concrete"
-    """The walls' name in reports: the preset, with "FE" for a finite-element wall."""
+    wall_label: str
 
 
 def defaults():
