@@ -185,6 +185,13 @@ def test_a_bad_row_or_registry_is_refused_by_name(monkeypatch):
         WallKind("odd", axes=(0, 2), builder=plane_strain_model, views=("top",))
     with pytest.raises(ValueError, match=r"model = 'shell': use 'beam', 'plane' or 'solid'"):
         kinds.wall_kind("shell")
+    from femoat.walls.fe import load_geometry
+
+    # a builder must make its own kind: the renders and the mesh files look the model's kind up
+    borrowed = WallKind("beam2", axes=(2,),
+                        builder=lambda g, mesh=None: kinds.build_model("beam", g))
+    with pytest.raises(ValueError, match="made a 'beam' model"):
+        borrowed.build(load_geometry(GEOMETRY))
     monkeypatch.setattr(kinds, "KINDS", (*kinds.KINDS, kinds.KINDS[0]))
     with pytest.raises(ValueError, match="distinct names"):
         kinds.names()

@@ -76,7 +76,11 @@ class WallKind:
 
     def build(self, geometry, mesh=None, **options):
         """The kind's WallModel of ``geometry`` (on ``mesh`` when given)."""
-        return self.builder(geometry, mesh=mesh, **options)
+        model = self.builder(geometry, mesh=mesh, **options)
+        if model.kind != self.name:  # the renders and the files read the model's kind
+            raise ValueError(f"wall kind {self.name!r}: its builder made a {model.kind!r} "
+                             f"model; build the WallModel with kind {self.name!r}")
+        return model
 
 
 def _lazy(module, function):
