@@ -27,7 +27,7 @@ LAYERS = [
     ("femoat.results", "femoat.collapse", "femoat.run", "femoat.aot", "femoat.warmup",
      "femoat.opensees"),
     # 6 figures and renderings (never imported by layers 0-5)
-    ("femoat.plotting", "femoat.render", "femoat.walls.fe.render"),
+    ("femoat.plotting", "femoat.render"),
     # 7 studies and scenarios
     ("femoat.paper", "femoat.scenario", "femoat.suite", "femoat.report"),
     # 8 the command line

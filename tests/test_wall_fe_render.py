@@ -24,7 +24,7 @@ def _share(img, rgb, tol=0.12):
 def test_regions_and_modes_render(tmp_path, render_backend):
     script = textwrap.dedent("""
         from femoat.walls.fe import WallGeometry, concrete, modal_analysis, plane_model, solid_model
-        from femoat.walls.fe.render import render_modes, render_regions
+        from femoat.render.fe_wall import render_modes, render_regions
         g = WallGeometry(height=60.0, length=30.0, thickness=4.0, material=concrete(),
                          impact_height=50.0, impact_patch=8.0)
         solid = solid_model(g, 6, 4, 1)

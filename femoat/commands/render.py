@@ -16,7 +16,7 @@ Headless machines: set VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow.
 
 from pathlib import Path
 
-from femoat.walls.kinds import KINDS
+from femoat.walls import kinds
 
 
 def add_parser(sub):
@@ -34,8 +34,9 @@ def add_parser(sub):
         "wall's displacement field u = sum(psi_i q_i) at the largest contact force.")
     w.add_argument("source", type=Path,
                    help="wall geometry .toml, or a mesh (.vtu/.msh) with a geometry TOML beside it")
-    w.add_argument("--model", choices=KINDS, default=None,
-                   help="wall model (default: beam for a TOML, the mesh's dimension for a mesh)")
+    w.add_argument("--model", choices=kinds.names(), default=None,
+                   help=f"wall model (default: {kinds.default_kind().name} for a TOML, the "
+                   "mesh's dimension for a mesh)")
     w.add_argument("--geometry", type=Path, default=None,
                    help="geometry TOML for a mesh source (default: the mesh path with .toml)")
     w.add_argument("--scenario", type=Path, default=None,

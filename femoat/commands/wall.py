@@ -3,17 +3,15 @@
 import json
 from pathlib import Path
 
-from femoat.walls.kinds import KINDS, KIND_OF_DIMENSION
-
-MESH_KIND = KIND_OF_DIMENSION
+from femoat.walls import kinds
 
 
 def add_parser(sub):
     p = sub.add_parser(
         "wall",
         help="finite-element wall: modes, K1 [kip/in], M1 [kip*s^2/in], static stiffness",
-        description="Build a beam, plane-stress or 3D model of a moat wall from a geometry TOML "
-        "(or from a mesh file with a geometry TOML of the same name beside it), compute its "
+        description=f"Build a model ({', '.join(kinds.names())}) of a moat wall from a geometry "
+        "TOML (or from a mesh file with a geometry TOML of the same name beside it), compute its "
         "lowest modes and the SDOF wall of the paper (mode 1 normalised to unit displacement "
         "at the impact point: M1 = phi'M phi, K1 = w1^2 M1), and write the mesh with the mode "
         "shapes as point data.",
@@ -21,13 +19,15 @@ def add_parser(sub):
     p.add_argument("source", type=Path,
                    help="geometry .toml, or a mesh (.vtu/.msh with named boundaries base, "
                    "impact, back)")
-    p.add_argument("--model", choices=KINDS, default=None,
-                   help="wall model (default: beam for a TOML, the mesh's dimension for a mesh)")
+    p.add_argument("--model", choices=kinds.names(), default=None,
+                   help=f"wall model (default: {kinds.default_kind().name} for a TOML, the "
+                   "mesh's dimension for a mesh)")
     p.add_argument("--geometry", type=Path, default=None,
                    help="geometry TOML for a mesh source (default: the mesh path with .toml)")
     p.add_argument("--modes", type=int, default=6, help="number of modes (default: 6)")
     p.add_argument("--timoshenko", action="store_true",
-                   help="beam model only: add shear deformation and rotary inertia")
+                   help=f"{' and '.join(_with_option('timoshenko'))} model only: add shear "
+                   "deformation and rotary inertia")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--out", type=Path, default=Path("femoat_output"),
                    help="folder for the mesh with mode shapes (default: ./femoat_output)")
@@ -40,26 +40,31 @@ def _load(args):
 
     source = args.source
     if source.suffix.lower() == ".toml":
-        return load_geometry(source), None, args.model or "beam"
+        return load_geometry(source), None, args.model or kinds.default_kind().name
     geometry_path = args.geometry or source.with_suffix(".toml")
     if not geometry_path.is_file():
         raise ValueError(f"mesh {source} needs a geometry TOML (material, fixity, impact "
                          f"height): none at {geometry_path}; pass --geometry")
     mesh = read_mesh(source)
-    kind = MESH_KIND[mesh.dim()]
-    if args.model not in (None, kind):
+    kind = kinds.kind_of_mesh(mesh).name
+    if args.model is not None and kinds.wall_kind(args.model).dimension != mesh.dim():
         raise ValueError(f"{source} is a {mesh.dim()}D mesh, which makes a {kind} model, not "
                          f"--model {args.model}")
-    return load_geometry(geometry_path), mesh, kind
+    return load_geometry(geometry_path), mesh, args.model or kind
+
+
+def _with_option(option):
+    """The names of the kinds whose builder takes ``option``."""
+    return [k.name for k in kinds.registered() if option in k.options]
 
 
 def _build(kind, geometry, mesh, timoshenko):
-    from femoat.walls.kinds import build_model
-
-    if timoshenko and kind != "beam":
-        raise ValueError("--timoshenko applies to the beam model only")
-    options = dict(timoshenko=timoshenko) if kind == "beam" else {}
-    return build_model(kind, geometry, mesh=mesh, **options)
+    row = kinds.wall_kind(kind)
+    if timoshenko and "timoshenko" not in row.options:
+        raise ValueError(f"--timoshenko applies to the {' and '.join(_with_option('timoshenko'))} "
+                         "model only")
+    options = dict(timoshenko=timoshenko) if "timoshenko" in row.options else {}
+    return row.build(geometry, mesh=mesh, **options)
 
 
 def _write_modes(model, result, path):

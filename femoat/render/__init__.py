@@ -6,7 +6,8 @@ OSMesa) itself before the first plotter (:mod:`femoat.render.backend`); set
 ``VTK_DEFAULT_OPENGL_WINDOW`` to choose another. Without any backend VTK may crash the process, so
 callers that must survive render in a subprocess.
 
-Modules: backend (the off-screen backend), wall (the wall's deformed shape at the peak impact of
+Modules: backend (the off-screen backend), fe_wall (a finite-element wall's mesh regions and
+mode shapes, drawn as its wall kind says), wall (the wall's deformed shape at the peak impact of
 a building run with a modal wall), animation (a GIF of a building run: base mat, floors, both
 walls).
 """

@@ -10,6 +10,8 @@ import numpy as np
 
 from femoat.atomic import atomic_path
 from femoat.render.backend import import_pyvista
+from femoat.render.fe_wall import impact_point, line_style, look, wall_grid
+from femoat.walls.kinds import wall_kind
 
 
 def peak_state(result, side=None, at="force"):
@@ -66,13 +68,6 @@ def wall_field(modal_wall, state):
     return modal_wall.shapes @ q
 
 
-def _impact_point(model):
-    g = model.geometry
-    point = {"beam": (0.0, 0.0, g.impact_height), "plane": (0.0, 0.0, g.impact_height),
-             "solid": (0.0, g.length / 2, g.impact_height)}[model.kind]
-    return np.array(point)
-
-
 def render_wall_peak(model, modal_wall, result, path, side=None, at="force", drawn_fraction=0.1,
                      window_size=(900, 900)):
     """PNG of the wall deformed at the peak impact of ``result`` (a run with ``modal_wall``).
@@ -88,8 +83,6 @@ def render_wall_peak(model, modal_wall, result, path, side=None, at="force", dra
     """
     pv = import_pyvista()
 
-    from femoat.walls.fe.render import _camera, _grid
-
     if not 0 < drawn_fraction <= 1:
         raise ValueError(f"drawn_fraction = {drawn_fraction!r} must be in (0, 1]")
     state = peak_state(result, side, at)
@@ -97,19 +90,20 @@ def render_wall_peak(model, modal_wall, result, path, side=None, at="force", dra
     peak = float(np.abs(u).max())
     height = model.geometry.height
     scale = drawn_fraction * height / peak if peak > 0 else 1.0
-    grid = _grid(model.mesh, u)
+    grid = wall_grid(model.mesh, u)
     grid.point_data["displacement [in]"] = np.linalg.norm(u, axis=1)
     warped = grid.warp_by_vector("u", factor=scale)
 
     plotter = pv.Plotter(off_screen=True, window_size=window_size)
     plotter.set_background("white")
-    line = 6 if model.kind == "beam" else 1
-    plotter.add_mesh(grid, style="wireframe", color="grey", opacity=0.35, line_width=line // 2 + 1)
-    plotter.add_mesh(warped, scalars="displacement [in]", cmap="viridis", show_edges=model.kind != "beam",
-                     edge_color="dimgrey", line_width=line,
-                     scalar_bar_args=dict(title="displacement [in]", color="black", vertical=True,
-                                          position_x=0.85, position_y=0.2, height=0.6))
-    tip = _impact_point(model) + scale * np.array([state["impact_displacement"], 0.0, 0.0])
+    style = line_style(model.kind)
+    plotter.add_mesh(grid, style="wireframe", color="grey", opacity=0.35,
+                     line_width=style["line_width"] // 2 + 1)
+    bar = dict(title="displacement [in]", color="black", vertical=True, position_x=0.85,
+               position_y=0.2, height=0.6)
+    plotter.add_mesh(warped, scalars="displacement [in]", cmap="viridis", edge_color="dimgrey",
+                     scalar_bar_args=bar, **style)
+    tip = impact_point(model) + scale * np.array([state["impact_displacement"], 0.0, 0.0])
     arrow = pv.Arrow(start=tip - np.array([0.25 * height, 0, 0]), direction=(1, 0, 0),
                      scale=0.25 * height, tip_length=0.3, tip_radius=0.08, shaft_radius=0.03)
     plotter.add_mesh(arrow, color="red")
@@ -120,8 +114,9 @@ def render_wall_peak(model, modal_wall, result, path, side=None, at="force", dra
         f"impact-point displacement {state['impact_displacement']:.4f} in, "
         f"{modal_wall.n_modes} modes, displacements x{scale:.3g}",
         font_size=11, color="black", position="upper_left")
-    _camera(plotter, model.mesh)
-    if model.mesh.dim() < 3:
+    view = wall_kind(model.kind).views[0]
+    look(plotter, model.mesh, view)
+    if view == "elevation":
         plotter.camera.zoom(0.9)
     with atomic_path(path) as tmp:
         plotter.screenshot(str(tmp))

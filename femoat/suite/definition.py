@@ -162,16 +162,16 @@ def load_suite(path=None):
 
 def suite_from_dict(d, base_dir=Path(".")):
     """Validate a parsed suite document; returns a :class:`Suite`."""
-    from femoat.scenario import _check_keys
+    from femoat.scenario import check_keys
     from femoat.suite.model import build_model
 
-    _check_keys(d, TABLES, "suite")
+    check_keys(d, TABLES, "suite")
     for table in TABLES & set(d):
         if not isinstance(d[table], dict):
             raise ValueError(f"suite: [{table}] must be a table (a [{table}] header with keys), "
                              f"not {d[table]!r}.")
     run = dict(d.get("run", {}))
-    _check_keys(run, RUN_KEYS, "[run]")
+    check_keys(run, RUN_KEYS, "[run]")
     policy = run.get("solver_failure", "separate")
     if policy not in FAILURE_POLICIES:
         raise ValueError(f"[run] solver_failure = {policy!r}: use one of {list(FAILURE_POLICIES)}.")

@@ -67,11 +67,11 @@ class P695Inputs:
 
 def check_table(d, where="[p695]"):
     """Validate a ``[p695]`` table (or report options); returns it with ratings upper-cased."""
-    from femoat.scenario import _check_keys
+    from femoat.scenario import check_keys
 
     if not isinstance(d, dict):
         raise ValueError(f"{where} must be a table (a [p695] header with keys), not {d!r}.")
-    _check_keys(d, KEYS, where)
+    check_keys(d, KEYS, where)
     out = {}
     for key, value in d.items():
         if value is None:

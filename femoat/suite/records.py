@@ -53,10 +53,10 @@ class RecordRef:
 
 def records_from_dict(d, base_dir=Path(".")):
     """The :class:`RecordRef` list of the ``[records]`` table, each record loaded and checked."""
-    from femoat.scenario import _check_keys
+    from femoat.scenario import check_keys
 
     d = dict(d)
-    _check_keys(d, KEYS, "[records]")
+    check_keys(d, KEYS, "[records]")
     sources = [k for k in ("set", "folder", "glob", "files") if k in d]
     if len(sources) != 1:
         raise ValueError("[records] needs exactly one of set = 'farfield' (FEMA P695), "

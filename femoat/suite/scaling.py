@@ -69,10 +69,10 @@ class Scaling:
 
 def scaling_from_dict(d, refs, time_scale, duration):
     """Parse ``[scaling]`` for the records ``refs``; computes their Sa(T) and PGA."""
-    from femoat.scenario import _check_keys
+    from femoat.scenario import check_keys
 
     d = dict(d)
-    _check_keys(d, KEYS, "[scaling]")
+    check_keys(d, KEYS, "[scaling]")
     method = d.get("method", "ida")
     if method not in ("p695", "ida", "pga"):
         raise ValueError(f"[scaling] method = {method!r}: use 'p695', 'ida' or 'pga'.")

@@ -18,7 +18,7 @@ def allowed_keys():
     from femoat import scenario
     from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
 
-    known = {k: set(v) for k, v in scenario._KNOWN.items() if k.split(".")[0] in MODEL_TABLES}
+    known = {k: set(v) for k, v in scenario.KEYS.items() if k.split(".")[0] in MODEL_TABLES}
     known["building.story"] = {f.name for m in (Elastic, Bilinear, IMKBilinear)
                                for f in dataclasses.fields(m)} | {"k0"}
     known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}

@@ -9,10 +9,10 @@ the moat, z up from the wall base (see :mod:`femoat.walls.fe.geometry`).
     result = modal_analysis(model, n_modes=6)
     result.K1, result.M1, result.frequencies, result.static_stiffness
 
-Modules: materials, geometry (the wall), beam / plane_stress / solid (three models returning a
-:class:`~femoat.walls.fe.model.WallModel`), modal (modes, SDOF, modal reduction at the impact
-point), mesh_io (.vtu/.msh), calibrate (dimensions for a target K1, M1), render (pyvista PNGs;
-never imported here).
+Modules: materials, geometry (the wall), beam / plane_stress / solid (the models of the wall
+kinds in :mod:`femoat.walls.kinds`, each returning a :class:`~femoat.walls.fe.model.WallModel`),
+modal (modes, SDOF, modal reduction at the impact point), mesh_io (.vtu/.msh), calibrate
+(dimensions for a target K1, M1). Pictures of the models: :mod:`femoat.render.fe_wall`.
 """
 
 from femoat.walls.fe.beam import beam_model

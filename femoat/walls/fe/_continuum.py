@@ -30,7 +30,8 @@ def element_for(mesh):
 def assemble_continuum(kind, geometry, mesh, lame, width):
     """K, M, impact vector, supports and influence vector of a continuum wall.
 
-    kind : "plane" or "solid"
+    kind : str  the wall kind (:mod:`femoat.walls.kinds`): the wall-frame axes of the mesh
+        coordinates and of the displacement components; x (the impact direction) comes first
     lame : (λ, μ) [ksi]  Lamé parameters (the plane-stress ones in 2D)
     width : float  [in] out-of-plane width multiplying 2D forms (the wall length); 1 in 3D
     The mesh must carry boundaries "base" and "impact" (and "back" if there is a backfill).
@@ -40,7 +41,12 @@ def assemble_continuum(kind, geometry, mesh, lame, width):
 
     from femoat.walls.fe import _assembly
     from femoat.walls.fe.model import WallModel
+    from femoat.walls.kinds import kind_of_mesh
 
+    axes = kind_of_mesh(mesh, kind).axes
+    if axes[0] != 0:
+        raise ValueError(f"{kind} wall: a continuum kind's first mesh axis must be x (0, the "
+                         f"impact direction), not {axes[0]}")
     g = geometry
     names = set(mesh.boundaries or {})
     needed = {"base", "impact"} | ({"back"} if g.subgrade_modulus > 0 else set())
@@ -72,9 +78,6 @@ def assemble_continuum(kind, geometry, mesh, lame, width):
     ground[0::dim] = 1.0
     vertex_dofs = np.full((3, mesh.nvertices), -1)
     nodal = _assembly.vector_dofs(basis.nodal_dofs[0], dim).T
-    if kind == "plane":
-        vertex_dofs[0], vertex_dofs[2] = nodal[0], nodal[1]
-    else:
-        vertex_dofs[:] = nodal
+    vertex_dofs[list(axes)] = nodal
     return WallModel(kind, g, stiffness.tocsr(), mass.tocsr(), impact, fixed, ground, mesh,
                      vertex_dofs)

@@ -90,9 +90,9 @@ def calibrate(template, target, free=("height", "thickness"), refine_with=None, 
               timoshenko=False, iterations=3, model_options=None):
     """Calibrate on the beam, then optionally correct the targets with a continuum model.
 
-    refine_with : None, "plane" or "solid"  model whose K1, M1 should hit the target: each
-        iteration re-targets the beam by the continuum/beam ratios (secant on a near-constant
-        ratio, converging in 2-3 iterations)
+    refine_with : None or a continuum wall kind ("plane", "solid")  model whose K1, M1 should
+        hit the target: each iteration re-targets the beam by the continuum/beam ratios (secant
+        on a near-constant ratio, converging in 2-3 iterations)
     model_options : dict  mesh divisions passed to the continuum model
     Returns the calibrated WallGeometry.
     """
@@ -111,28 +111,30 @@ def calibrate(template, target, free=("height", "thickness"), refine_with=None, 
 
 
 def _continuum(kind):
-    from femoat.walls.fe.plane_stress import plane_model
-    from femoat.walls.fe.solid import solid_model
+    from femoat.walls.kinds import registered
 
-    table = {"plane": plane_model, "solid": solid_model}
-    if kind not in table:
-        raise ValueError(f"refine_with must be None, 'plane' or 'solid', got {kind!r}")
-    return table[kind]
+    row = next((k for k in registered() if k.name == kind), None)
+    if row is None or row.dimension == 1:
+        raise ValueError(f"refine_with = {kind!r}: refine with a continuum model ("
+                         + ", ".join(repr(k.name) for k in registered() if k.dimension > 1)
+                         + ") or None")
+    return row.build
 
 
 def write_wall(geometry, stem, model="solid", **mesh_options):
-    """Write ``<stem>.vtu`` (the model's mesh with named boundaries) and ``<stem>.toml``."""
+    """Write ``<stem>.vtu`` (the structured mesh of wall kind ``model``, with named boundaries)
+    and ``<stem>.toml``."""
     from pathlib import Path
 
     from femoat.walls.fe.mesh_io import write_mesh
-    from femoat.walls.fe.plane_stress import plane_mesh
-    from femoat.walls.fe.solid import solid_mesh
+    from femoat.walls.kinds import registered, wall_kind
 
     stem = Path(stem)
-    builders = {"plane": plane_mesh, "solid": solid_mesh}
-    if model not in builders:
-        raise ValueError(f"model must be 'plane' or 'solid', got {model!r}")
-    mesh = builders[model](geometry, **mesh_options)
+    mesher = wall_kind(model).mesher
+    if mesher is None:
+        raise ValueError(f"model = {model!r} makes its own mesh: write a kind with a mesher ("
+                         + ", ".join(repr(k.name) for k in registered() if k.mesher) + ")")
+    mesh = mesher(geometry, **mesh_options)
     write_mesh(stem.with_suffix(".vtu"), mesh)
     geometry.save(stem.with_suffix(".toml"))
     return stem.with_suffix(".vtu"), stem.with_suffix(".toml")
@@ -160,16 +162,14 @@ def paper_walls(length=48.0, impact_patch=4.0, refine_with="solid"):
 def main():
     """Calibrate the paper's walls, print them with their modes, write meshes/*_wall.*."""
     from femoat.units import G
-    from femoat.walls.fe.plane_stress import plane_model
-    from femoat.walls.fe.solid import solid_model
+    from femoat.walls.kinds import registered
 
     for name, g in paper_walls().items():
         print(f"{name}: H = {g.height:.2f} in, L = {g.length:.1f} in, t = {g.thickness:.3f} in, "
               f"impact at z = {g.impact_height:.2f} in (patch {g.impact_patch:g} in)")
-        for label, model in (("beam", beam_model(g)), ("plane", plane_model(g)),
-                             ("solid", solid_model(g))):
-            r = modal_analysis(model, 6)
-            print(f"  {label:<6s} K1 = {r.K1:8.3f} kip/in  M1*g = {r.M1 * G:.4f} kip  "
+        for kind in registered():
+            r = modal_analysis(kind.build(g), 6)
+            print(f"  {kind.name:<6s} K1 = {r.K1:8.3f} kip/in  M1*g = {r.M1 * G:.4f} kip  "
                   f"static k = {r.static_stiffness:8.3f} kip/in  f = "
                   + ", ".join(f"{f:.1f}" for f in r.frequencies) + " Hz")
         print("  written:", *write_wall(g, f"meshes/{name}_wall"))

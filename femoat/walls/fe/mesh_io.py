@@ -5,8 +5,9 @@ one integer per cell whose bits flag the cell's facets on that boundary (scikit-
 encoding, decoded by :func:`skfem.io.meshio.from_meshio`). A gmsh file's physical groups of
 facets (lines in 2D, triangles/quads in 3D) become boundaries under their physical names.
 
-Coordinates on disk are 3D in the wall frame (x normal to the wall, y along the moat, z up):
-a beam mesh is written along z at x = y = 0 and a 2D section in the x-z plane. On reading, a
+Coordinates on disk are 3D in the wall frame (x normal to the wall, y along the moat, z up),
+each mesh coordinate on its axis of the wall kind the mesh makes (:mod:`femoat.walls.kinds`): a
+beam mesh is written along z at x = y = 0 and a 2D section in the x-z plane. On reading, a
 1D mesh takes the coordinate with the largest extent as z; a 2D mesh takes x and, as vertical,
 z if the points span z, else y (gmsh draws in the x-y plane).
 """
@@ -22,12 +23,13 @@ CELL_DIM = {"line": 1, "triangle": 2, "quad": 2, "triangle6": 2, "quad9": 2, "te
             "hexahedron": 3, "tetra10": 3, "hexahedron27": 3}
 
 
-def _embed(points):
-    """Mesh coordinates (dim, n) → 3D wall-frame points (n, 3)."""
-    dim, n = points.shape
-    out = np.zeros((n, 3))
-    columns = {1: [2], 2: [0, 2], 3: [0, 1, 2]}[dim]
-    out[:, columns] = points.T
+def wall_frame_points(mesh):
+    """The mesh vertices as 3D wall-frame points (n, 3) [in]: each mesh coordinate on its axis
+    of the kind the mesh makes."""
+    from femoat.walls.kinds import kind_of_mesh
+
+    out = np.zeros((mesh.p.shape[1], 3))
+    out[:, list(kind_of_mesh(mesh).axes)] = mesh.p.T
     return out
 
 
@@ -42,7 +44,7 @@ def write_mesh(path, mesh, point_data=None, cell_data=None):
     from skfem.io.meshio import to_meshio
 
     mio = to_meshio(mesh, point_data=dict(point_data or {}), cell_data=dict(cell_data or {}))
-    mio.points = _embed(mesh.p)
+    mio.points = wall_frame_points(mesh)
     path = Path(path)
     kwargs = {"file_format": "gmsh"} if path.suffix == ".msh" else {}
     with atomic_path(path) as tmp:

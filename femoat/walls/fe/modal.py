@@ -25,7 +25,7 @@ NEGLIGIBLE = 1e-6
 class ModalResult:
     """Modes of a wall and the SDOF idealisation of its fundamental impact mode.
 
-    kind : str  the model ("beam", "plane", "solid")
+    kind : str  the name of the wall kind (:mod:`femoat.walls.kinds`)
     frequencies : ndarray  [Hz], ascending
     angular_frequencies : ndarray  [rad/s]
     shapes : ndarray (n_dofs, n_modes)  mass-normalised mode shapes [in/√(kip·s²/in)]

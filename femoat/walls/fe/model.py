@@ -13,7 +13,7 @@ import numpy as np
 class WallModel:
     """An assembled wall, before supports are applied.
 
-    kind : str  one of :data:`femoat.walls.kinds.KINDS`
+    kind : str  the name of its wall kind (:mod:`femoat.walls.kinds`)
     geometry : WallGeometry  the wall it was built from
     stiffness : scipy.sparse.csr_matrix  [kip/in], all DOFs (supports not yet applied)
     mass : scipy.sparse.csr_matrix  [kip·s²/in], consistent mass, all DOFs

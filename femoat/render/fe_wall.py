@@ -1,28 +1,31 @@
-"""Pictures of wall models with pyvista, off-screen, to PNG. Never imported by the core.
+"""Pictures of finite-element wall models (pyvista, off-screen, PNG): the mesh with its named
+boundaries, the mode shapes, and the pieces the picture of a run's wall shares with them.
 
-Off-screen rendering needs an OpenGL backend; on a headless machine set
-``VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow`` (EGL) before Python starts. Without any
-backend VTK may crash the process, so callers that must survive run this in a subprocess.
+How a model is drawn (its camera views, its line width) is its wall kind's
+(:mod:`femoat.walls.kinds`); points are placed in the wall frame by
+:func:`femoat.walls.fe.mesh_io.wall_frame_points`.
 """
 
 import numpy as np
 
 from femoat.atomic import atomic_path
 from femoat.render.backend import import_pyvista
+from femoat.walls.kinds import kind_of_mesh, wall_kind
 
 REGION_COLORS = {"base": "royalblue", "impact": "red", "back": "orange"}
 """Colour of each named boundary; other names are drawn in grey."""
 
 
-def _grid(mesh, point_vectors=None):
-    """pyvista UnstructuredGrid of a scikit-fem mesh in the 3D wall frame."""
+def wall_grid(mesh, point_vectors=None):
+    """pyvista UnstructuredGrid of a scikit-fem mesh in the 3D wall frame; ``point_vectors``
+    (n_vertices, 3) [in] become its point data "u"."""
     pv = import_pyvista()
     from skfem.io.meshio import to_meshio
 
-    from femoat.walls.fe.mesh_io import _embed
+    from femoat.walls.fe.mesh_io import wall_frame_points
 
     mio = to_meshio(mesh, encode_cell_data=False)
-    mio.points = _embed(mesh.p)
+    mio.points = wall_frame_points(mesh)
     grid = pv.from_meshio(mio)
     if point_vectors is not None:
         grid.point_data["u"] = point_vectors
@@ -37,9 +40,9 @@ def _facet_polydata(mesh, facets):
     """
     pv = import_pyvista()
 
-    from femoat.walls.fe.mesh_io import _embed
+    from femoat.walls.fe.mesh_io import wall_frame_points
 
-    points = _embed(mesh.p)
+    points = wall_frame_points(mesh)
     f = mesh.facets[:, facets]
     if f.shape[0] == 1:
         return pv.PolyData(points[f[0]])
@@ -63,35 +66,54 @@ def _facet_polydata(mesh, facets):
     return pv.PolyData(flat, faces=np.concatenate(faces))
 
 
-def _camera(plotter, mesh, side="moat"):
-    """Look at the wall from the moat (impact face, slightly from below to show the base) or
-    from the backfill; 1D/2D models are seen in the x-z plane."""
-    if mesh.dim() < 3:
+def look(plotter, mesh, view):
+    """Point the camera: "elevation" looks along y at the x-z plane; "moat" at the impact face
+    (slightly from below, to show the base); "backfill" at the back face."""
+    if view == "elevation":
         plotter.view_xz()
         return
-    lo, hi = mesh.p.min(axis=1), mesh.p.max(axis=1)
+    from femoat.walls.fe.mesh_io import wall_frame_points
+
+    points = wall_frame_points(mesh)
+    lo, hi = points.min(axis=0), points.max(axis=0)
     centre, size = (lo + hi) / 2, np.max(hi - lo)
-    direction = np.array([-1.0, -0.7, -0.25]) if side == "moat" else np.array([1.0, -0.7, 0.4])
+    direction = np.array([-1.0, -0.7, -0.25]) if view == "moat" else np.array([1.0, -0.7, 0.4])
     plotter.camera_position = [tuple(centre + 2.5 * size * direction), tuple(centre), (0, 0, 1)]
 
 
-def render_regions(mesh, path, window_size=(800, 800)):
+def impact_point(model):
+    """The impact point in the wall frame [in]: on the impact face (x = 0) at the impact height,
+    mid-length where the model spans the length (y) of the wall."""
+    g = model.geometry
+    spans_length = 1 in wall_kind(model.kind).axes
+    return np.array([0.0, g.length / 2 if spans_length else 0.0, g.impact_height])
+
+
+def line_style(kind):
+    """``add_mesh`` keywords drawing a model of wall kind ``kind`` (a name): cell edges where
+    there are faces, lines of the kind's width."""
+    row = wall_kind(kind)
+    return dict(show_edges=row.dimension > 1, line_width=row.line_width)
+
+
+def render_regions(mesh, path, window_size=(800, 800), kind=None):
     """PNG of the mesh (grey, edges shown) with its named boundaries coloured, and a legend.
 
-    A 3D wall is drawn twice: from the moat side (impact face and base) and from the backfill.
+    kind : str or None  the wall kind drawn (default: the kind the mesh makes); one panel per
+        view of the kind (a 3D wall from the moat side, impact face and base, and from the
+        backfill)
     """
     pv = import_pyvista()
-    sides = ("moat", "backfill") if mesh.dim() == 3 else ("moat",)
-    plotter = pv.Plotter(off_screen=True, shape=(1, len(sides)),
-                         window_size=(window_size[0] * len(sides), window_size[1]))
-    grid = _grid(mesh)
-    for k, side in enumerate(sides):
+    row = kind_of_mesh(mesh, kind)
+    views = row.views
+    plotter = pv.Plotter(off_screen=True, shape=(1, len(views)),
+                         window_size=(window_size[0] * len(views), window_size[1]))
+    grid = wall_grid(mesh)
+    for k, view in enumerate(views):
         plotter.subplot(0, k)
         plotter.set_background("white")
-        if mesh.dim() == 1:
-            plotter.add_mesh(grid, color="dimgrey", line_width=4)
-        else:
-            plotter.add_mesh(grid, color="lightgrey", show_edges=True, edge_color="dimgrey")
+        plotter.add_mesh(grid, color="dimgrey" if mesh.dim() == 1 else "lightgrey",
+                         edge_color="dimgrey", **line_style(row.name))
         legend = []
         for name, facets in (mesh.boundaries or {}).items():
             color = REGION_COLORS.get(name, "grey")
@@ -104,9 +126,9 @@ def render_regions(mesh, path, window_size=(800, 800)):
             legend.append([name, color])
         if legend:
             plotter.add_legend(legend, bcolor="white", face="rectangle", size=(0.3, 0.15), loc="lower left")
-        if mesh.dim() == 3:
-            plotter.add_text(f"seen from the {side}", font_size=12, color="black")
-        _camera(plotter, mesh, side)
+        if len(views) > 1:
+            plotter.add_text(f"seen from the {view}", font_size=12, color="black")
+        look(plotter, mesh, view)
     with atomic_path(path) as tmp:
         plotter.screenshot(str(tmp))
     plotter.close()
@@ -129,16 +151,15 @@ def render_modes(model, result, path, n_modes=4, amplitude=0.1, window_size=(400
         u = model.vertex_vectors(result.shapes[:, i])
         peak = np.abs(u).max()
         scale = amplitude * model.geometry.height / peak if peak > 0 else 0.0
-        grid = _grid(model.mesh, u)
+        grid = wall_grid(model.mesh, u)
         grid.point_data["|u|"] = np.linalg.norm(u, axis=1) / (peak if peak > 0 else 1.0)
         warped = grid.warp_by_vector("u", factor=scale)
         plotter.add_mesh(grid, style="wireframe", color="lightgrey", opacity=0.4)
-        plotter.add_mesh(warped, scalars="|u|", cmap="viridis", show_edges=model.kind != "beam",
-                         edge_color="grey", line_width=5 if model.kind == "beam" else 1,
-                         show_scalar_bar=False)
+        plotter.add_mesh(warped, scalars="|u|", cmap="viridis", edge_color="grey",
+                         show_scalar_bar=False, **line_style(model.kind))
         plotter.add_text(f"mode {i + 1}: {result.frequencies[i]:.1f} Hz", font_size=12,
                          color="black")
-        _camera(plotter, model.mesh)
+        look(plotter, model.mesh, wall_kind(model.kind).views[0])
     with atomic_path(path) as tmp:
         plotter.screenshot(str(tmp))
     plotter.close()

@@ -1,0 +1,62 @@
+"""Scenario files: one TOML file describes the building, the walls and their contact law, the
+ground motion, the solver, the collapse criteria and the output.
+
+Every table and every key is optional. A key left out takes the default of the object it sets,
+read from that object (a dataclass field, a function's parameter) by the table's module, never
+copied: :func:`defaults` returns the scenario of an empty file, e.g.
+``defaults()["building"]["base_weight"]``. Units: kip, in, s; accelerations and PGA in g.
+Relative paths are relative to the scenario file. The tables and their keys (:data:`KEYS`):
+
+``[building]`` a :class:`~femoat.structure.building.Building` (:mod:`.building`)
+    base_weight [kip]; floor_weights [kip], a list, bottom to top; story_model, the material
+    of every story: "elastic" | "bilinear" | "imk" (deteriorating); story_damping_ratio [-] at
+    story_damping_period [s]; story_heights [in], a list, bottom to top; p_delta (story
+    geometric stiffness −P/h, P the gravity of the floors above); isolator_capacity [in], the
+    isolator's displacement capacity (a collapse criterion).
+``[building.story]`` the story material's parameters: Elastic k [kip/in]; Bilinear k0
+    [kip/in], Fy [kip], b [-]; IMKBilinear K0, My, alpha_s, theta_p [in], theta_pc [in], ...
+``[building.isolator]`` the single friction pendulum: R [in], mu [-] (mu_slow when mu_fast is
+    given), u_y [in], mu_fast [-], a [s/in], v_reg [in/s]; W [kip] is the building's weight.
+``[walls]`` the moat walls and their contact (:mod:`.walls`)
+    preset: a wall of the paper's Table 3, "concrete" | "steel"; damping: its C_imp,
+    "published" | "consistent"; law: a contact law letter, E | V | J | H | M; gap [in];
+    sides: "both" | "pos" | "neg" | "none"; calibrate: the law's damping calibrated to the
+    exact restitution at calibrate_v0 [in/s].
+``[walls.fe]`` optional: a finite-element wall, reduced to its impact modes, replaces the SDOF
+    wall. geometry: the wall geometry TOML (required; see ``femoat wall --help``); mesh: your
+    own mesh (.vtu/.msh), whose dimension chooses the model; model: a wall kind of
+    :mod:`femoat.walls.kinds`; modes: their number (left out: automatic, from flexibility and
+    the contact time); flexibility [-]: the impact flexibility the automatic modes capture;
+    residual: add the residual-flexibility vector of the modes left out; damping_ratio [-] of
+    every mode (default: ξ_imp of the preset's SDOF wall).
+``[motion]`` the ground motion (:mod:`.motion`)
+    source: "erzincan" (the paper's record) | "at2" | "text" | "fema"; path: the record file
+    (at2, text); dt [s], units, column, skip_rows (text); record_set, record_id, component
+    (fema); pga [g]: scale the record to this PGA (left out: the record's own, or the paper's
+    for Erzincan); time_scale [-]: similitude factor on time; extra_time [s] of free vibration
+    after the record.
+``[solver]`` an :class:`~femoat.integration.settings.Integrator`: method ("dp5": fifth order
+    while the gaps are open, Newmark in contact; "newmark": Newmark/HHT-α throughout), rtol,
+    alpha, max_step [s] (left out: the record's sample interval), min_step [s], newton_tol,
+    max_newton, contact_steps, record_every.
+``[collapse]`` optional, limit states checked every step: a
+    :class:`~femoat.collapse.CollapseCriteria`, drift_ratio [-], isolator (the isolator beyond
+    isolator_capacity), wall_displacement [in], wall_force [kip], stop (end the run at the
+    first criterion reached). Without the table no criterion is checked.
+``[output]`` folder (run.npz, impacts.csv, summary.csv, figures); figures.
+
+``examples/my_building.toml`` is a complete file.
+"""
+
+from femoat.scenario.building import building_from_dict
+from femoat.scenario.document import KEYS, Scenario, defaults, load_scenario, scenario_from_dict
+from femoat.scenario.motion import motion_from_dict
+from femoat.scenario.reading import check_keys, read_toml
+from femoat.scenario.solver import collapse_from_dict, solver_from_dict
+from femoat.scenario.walls import fe_wall_from_dict, walls_from_dict
+
+__all__ = [
+    "KEYS", "Scenario", "building_from_dict", "check_keys", "collapse_from_dict", "defaults",
+    "fe_wall_from_dict", "load_scenario", "motion_from_dict", "read_toml", "scenario_from_dict",
+    "solver_from_dict", "walls_from_dict",
+]
