@@ -2,6 +2,8 @@
 (with the sections and tables of FEMA P695, 2009, that define them) and the choices behind the
 numbers."""
 
+from femoat.suite import policies
+
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
     "records, solver failures, errors), the empirical median collapse intensity S_CT [g] (when "
@@ -46,11 +48,6 @@ FILES = {
     "median*exp(+-beta), n runs in each label). Compare walls and laws within one colour; a "
     "missing bar is a group without runs.",
 }
-
-POLICY = {"separate": "solver failures are left out of the fragility and the statistics and "
-                      "reported apart (n_solver_failures)",
-          "collapse": "solver failures count as collapses",
-          "exclude": "solver failures are dropped (their count is still in n_solver_failures)"}
 
 P695 = [
     "FEMA P695 (2009) quantities in collapse_summary.csv:",
@@ -100,8 +97,9 @@ def readme_text(meta, inputs, basis, ida, levels, written):
                  else f"  no margin: {note}")
     if smt is not None and note:
         lines.append(f"  {note}")
-    lines += [f"Solver-failure policy '{meta.get('solver_failure', 'separate')}': "
-              + POLICY.get(meta.get("solver_failure", "separate"), "?") + "; runs with status "
+    policy = meta.get("solver_failure", policies.DEFAULT)
+    lines += [f"Solver-failure policy '{policy}': " + policies.SOLVER_FAILURE[policy]
+              + "; runs with status "
               "'error' are always left out and counted in n_errors.", "",
               "Collapse intensity: " + (
                   "IDA, per record the lowest IM at which it collapsed (for hunt-and-fill the "

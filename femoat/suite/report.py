@@ -30,6 +30,7 @@ import numpy as np
 import pandas as pd
 
 from femoat.atomic import atomic_path, write_text
+from femoat.suite import policies
 from femoat.suite import statistics as st
 from femoat.suite.p695_inputs import RATING_KEYS, resolve
 from femoat.suite.readme import readme_text
@@ -131,7 +132,8 @@ def _collapse_rows(table, meta, inputs):
     from femoat.suite.margin import collapse_row  # scipy: imported when used
     from femoat.suite.p695_inputs import margin_basis
 
-    ida, policy = meta.get("scaling") == "ida", meta.get("solver_failure", "separate")
+    ida = meta.get("scaling") == "ida"
+    policy = meta.get("solver_failure", policies.DEFAULT)
     basis = margin_basis(meta, inputs)
     out = []
     for label, key, rows in ordered_variations(table, meta):
