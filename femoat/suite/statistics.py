@@ -1,7 +1,7 @@
 """Per-variation views of a suite's run table: usable runs, collapse data, intensity levels and
 response statistics (median and lognormal dispersion across records).
 
-The run table has one row per run (columns listed in :mod:`femoat.suite.report`). A *variation* is
+The run table has one row per run (columns: :mod:`femoat.suite.columns`). A *variation* is
 one combination of the varied scenario keys (``meta["varied"]``, e.g. "walls.law" ×
 "walls.preset"); a *record* is one (record_set, record_id, component): as in FEMA P695, each
 horizontal component of a pair counts as a record.
