@@ -1,6 +1,5 @@
 """Suite files: validation before any run (errors name the key or file), P695 anchoring."""
 
-from pathlib import Path
 
 import numpy as np
 import pytest

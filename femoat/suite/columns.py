@@ -120,100 +120,106 @@ def _optional(x):
     return math.nan if x is None else float(x)
 
 
-def _c(name, dtype, unit, extract, description, section, per=None, failed=None):
-    return Column(name, dtype, unit, extract, description, section, per, failed)
-
-
 COLUMNS = (
-    _c("run_id", "string", "", lambda p: p.spec.run_id, "the run's id: a hash of the suite "
-       "hash, the record, the variation and the intensity, stable across processes and reruns",
-       "identity"),
-    _c("suite_hash", "string", "", lambda p: p.suite.hash, "the suite definition's hash",
-       "identity"),
-    _c("femoat_version", "string", "", lambda p: code_version(), "femoat's version and a fingerprint of the "
-       "sources that compute a run", "identity"),
-    _c("record", "string", "", lambda p: p.record.label, "the record's label, e.g. "
-       "farfield/3b or the AT2 file's stem", "identity"),
-    _c("variation", "string", "", lambda p: var.label(p.suite.combos[p.spec.var]),
-       "the variation's label, e.g. walls.law=E (base when nothing varies)", "identity"),
-    _c("record_set", "string", "", lambda p: p.record.record_set, "the FEMA P695 set (empty "
-       "for AT2 files)", "identity"),
-    _c("record_id", "string", "", lambda p: p.record.record_id, "the ID in the set, or the "
-       "file's stem", "identity"),
-    _c("rsn", "int64", "", lambda p: p.record.rsn, "PEER record sequence number", "identity"),
-    _c("record_name", "string", "", lambda p: p.record.record_name, "PEER component name",
-       "identity"),
-    _c("component", "string", "", lambda p: p.record.component, "'a' or 'b' of a FEMA P695 "
-       "pair", "identity"),
-    _c("earthquake", "string", "", lambda p: p.record.earthquake, "the earthquake's name",
-       "identity"),
-    _c("magnitude", "float64", "-", lambda p: p.record.magnitude, "moment magnitude",
-       "identity"),
-    _c("distance_km", "float64", "km", lambda p: p.record.distance_km, "closest distance to "
-       "the rupture plane", "identity"),
-    _c("pulse", "bool", "", lambda p: p.record.pulse, "a pulse-like record", "identity"),
-    _c("scale_factor", "float64", "-", lambda p: p.factor, "total amplitude factor on the "
-       "unscaled record", "intensity"),
-    _c("im_kind", "string", "", lambda p: p.suite.scaling.im_kind, "the intensity measure: "
-       "'sa' (Sa(T), 5 %) or 'pga'", "intensity"),
-    _c("im", "float64", "g", lambda p: p.spec.im, "the run's intensity", "intensity"),
-    _c("sa_t", "float64", "g", _sa, "Sa(T) as applied (empty without a period)", "intensity"),
-    _c("pga", "float64", "g", lambda p: p.suite.scaling.pga[p.spec.rec] * p.factor,
-       "PGA as applied", "intensity"),
-    _c("{key}", None, "", lambda p, key: p.suite.combos[p.spec.var][key], "one column per "
-       "varied key, named by its dotted key (e.g. walls.law), typed by its values",
-       "variation", per="key"),
-    _c("status", "string", "", lambda r: "collapsed" if r.collapse["collapsed"] else "ok",
-       "'ok', 'collapsed', 'solver_failure' or 'error'", "outcome"),
-    _c("error", "string", "", lambda r: None, "why the run failed, naming the run (empty "
-       "when it finished)", "outcome"),
-    _c("collapsed", "bool", "", lambda r: bool(r.collapse["collapsed"]), "any collapse "
-       "criterion reached", "outcome", failed=False),
-    _c("collapse_{c}", "bool", "", lambda r, c: r.collapse.get(c) is not None, "criterion c "
-       "(drift, isolator, wall_displacement, wall_force; femoat.collapse) reached", "outcome",
-       per="criterion", failed=False),
-    _c("collapse_{c}_time", "float64", "s", _criterion_time, "when criterion c was first "
-       "reached (NaN if not)", "outcome", per="criterion", failed=math.nan),
-    _c("peak_impact_force_pos", "float64", "kip", lambda r: r.peaks["peak_impact_force_pos"],
-       "peak contact force on the wall on the positive side", "peaks"),
-    _c("peak_impact_force_neg", "float64", "kip", lambda r: r.peaks["peak_impact_force_neg"],
-       "peak contact force on the wall on the negative side", "peaks"),
-    _c("impacts_pos", "int64", "", lambda r: int(r.peaks["impacts_pos"]), "impacts on the "
-       "positive side", "peaks"),
-    _c("impacts_neg", "int64", "", lambda r: int(r.peaks["impacts_neg"]), "impacts on the "
-       "negative side", "peaks"),
-    _c("peak_base_displacement", "float64", "in", lambda r: r.peaks["peak_base_displacement"],
-       "peak isolator (base) displacement", "peaks"),
-    _c("peak_wall_displacement_pos", "float64", "in",
-       lambda r: r.peaks.get("peak_wall_displacement_pos", math.nan), "peak displacement of "
-       "the positive wall at the impact point (NaN without a wall on that side)", "peaks"),
-    _c("peak_wall_displacement_neg", "float64", "in",
-       lambda r: r.peaks.get("peak_wall_displacement_neg", math.nan), "the same, negative "
-       "side", "peaks"),
-    _c("peak_drift_{k}", "float64", "in", lambda r, k: _story(r.peaks, "peak_drift", k),
-       "peak drift of story k (1 at the bottom; NaN above a shorter variation's top)",
-       "peaks", per="story"),
-    _c("peak_drift_ratio_{k}", "float64", "-",
-       lambda r, k: _story(r.peaks, "peak_drift_ratio", k), "peak drift of story k / its "
-       "height", "peaks", per="story"),
-    _c("peak_floor_acceleration_{k}", "float64", "g",
-       lambda r, k: _story(r.peaks, "peak_floor_acceleration", k), "peak absolute "
-       "acceleration of the floor on top of story k", "peaks", per="story"),
-    _c("peak_drift_ratio", "float64", "-",
-       lambda r: float(np.asarray(r.peaks["peak_drift_ratio"], dtype=float).max(initial=0.0)),
-       "largest peak drift ratio over the stories", "peaks"),
-    _c("peak_base_acceleration", "float64", "g",
-       lambda r: _optional(r.peaks.get("peak_base_acceleration")), "peak absolute "
-       "acceleration of the base mat", "peaks"),
-    _c("pounding", "bool", "", lambda r: bool(r.peaks["impacts_pos"] + r.peaks["impacts_neg"]
-                                             > 0), "any impact", "peaks"),
-    _c("t_reached", "float64", "s", lambda r: float(r.time[-1]), "the run's last time (the "
-       "collapse time when it stopped there)", "peaks"),
-    _c("cpu_seconds", "float64", "s", None, "CPU of the whole run in its thread: model "
-       "lookup, record scaling, solver, peaks (NaN when its task was lost)", "peaks"),
-    _c("solver_seconds", "float64", "s", lambda r: float(r.peaks["cpu_seconds"]), "process "
-       "CPU of the compiled loop, from the solver", "peaks"),
-    _c("steps", "int64", "", lambda r: int(r.peaks["steps"]), "solver steps", "peaks"),
+    # (name, dtype, unit, extract, description, section, [per], [failed]), in column order
+    Column("run_id", "string", "", lambda p: p.spec.run_id,
+           "the run's id: a hash of the suite hash, the record, the variation and the "
+           "intensity, stable across processes and reruns", "identity"),
+    Column("suite_hash", "string", "", lambda p: p.suite.hash,
+           "the suite definition's hash", "identity"),
+    Column("femoat_version", "string", "", lambda p: code_version(),
+           "femoat's version and a fingerprint of the sources that compute a run", "identity"),
+    Column("record", "string", "", lambda p: p.record.label,
+           "the record's label, e.g. farfield/3b or the AT2 file's stem", "identity"),
+    Column("variation", "string", "", lambda p: var.label(p.suite.combos[p.spec.var]),
+           "the variation's label, e.g. walls.law=E (base when nothing varies)", "identity"),
+    Column("record_set", "string", "", lambda p: p.record.record_set,
+           "the FEMA P695 set (empty for AT2 files)", "identity"),
+    Column("record_id", "string", "", lambda p: p.record.record_id,
+           "the ID in the set, or the file's stem", "identity"),
+    Column("rsn", "int64", "", lambda p: p.record.rsn,
+           "PEER record sequence number", "identity"),
+    Column("record_name", "string", "", lambda p: p.record.record_name,
+           "PEER component name", "identity"),
+    Column("component", "string", "", lambda p: p.record.component,
+           "'a' or 'b' of a FEMA P695 pair", "identity"),
+    Column("earthquake", "string", "", lambda p: p.record.earthquake,
+           "the earthquake's name", "identity"),
+    Column("magnitude", "float64", "-", lambda p: p.record.magnitude,
+           "moment magnitude", "identity"),
+    Column("distance_km", "float64", "km", lambda p: p.record.distance_km,
+           "closest distance to the rupture plane", "identity"),
+    Column("pulse", "bool", "", lambda p: p.record.pulse,
+           "a pulse-like record", "identity"),
+    Column("scale_factor", "float64", "-", lambda p: p.factor,
+           "total amplitude factor on the unscaled record", "intensity"),
+    Column("im_kind", "string", "", lambda p: p.suite.scaling.im_kind,
+           "the intensity measure: 'sa' (Sa(T), 5 %) or 'pga'", "intensity"),
+    Column("im", "float64", "g", lambda p: p.spec.im,
+           "the run's intensity", "intensity"),
+    Column("sa_t", "float64", "g", _sa,
+           "Sa(T) as applied (empty without a period)", "intensity"),
+    Column("pga", "float64", "g", lambda p: p.suite.scaling.pga[p.spec.rec] * p.factor,
+           "PGA as applied", "intensity"),
+    Column("{key}", None, "", lambda p, key: p.suite.combos[p.spec.var][key],
+           "one column per varied key, named by its dotted key (e.g. walls.law), typed by its "
+           "values", "variation", per="key"),
+    Column("status", "string", "", lambda r: "collapsed" if r.collapse["collapsed"] else "ok",
+           "'ok', 'collapsed', 'solver_failure' or 'error'", "outcome"),
+    Column("error", "string", "", lambda r: None,
+           "why the run failed, naming the run (empty when it finished)", "outcome"),
+    Column("collapsed", "bool", "", lambda r: bool(r.collapse["collapsed"]),
+           "any collapse criterion reached", "outcome", failed=False),
+    Column("collapse_{c}", "bool", "", lambda r, c: r.collapse.get(c) is not None,
+           f"criterion c ({', '.join(CRITERIA)}: femoat.collapse) reached", "outcome",
+           per="criterion", failed=False),
+    Column("collapse_{c}_time", "float64", "s", _criterion_time,
+           "when criterion c was first reached (NaN if not)", "outcome", per="criterion",
+           failed=math.nan),
+    Column("peak_impact_force_pos", "float64", "kip", lambda r: r.peaks["peak_impact_force_pos"],
+           "peak contact force on the wall on the positive side", "peaks"),
+    Column("peak_impact_force_neg", "float64", "kip", lambda r: r.peaks["peak_impact_force_neg"],
+           "peak contact force on the wall on the negative side", "peaks"),
+    Column("impacts_pos", "int64", "", lambda r: int(r.peaks["impacts_pos"]),
+           "impacts on the positive side", "peaks"),
+    Column("impacts_neg", "int64", "", lambda r: int(r.peaks["impacts_neg"]),
+           "impacts on the negative side", "peaks"),
+    Column("peak_base_displacement", "float64", "in", lambda r: r.peaks["peak_base_displacement"],
+           "peak isolator (base) displacement", "peaks"),
+    Column("peak_wall_displacement_pos", "float64", "in",
+           lambda r: r.peaks.get("peak_wall_displacement_pos", math.nan),
+           "peak displacement of the positive wall at the impact point (NaN without a wall on "
+           "that side)", "peaks"),
+    Column("peak_wall_displacement_neg", "float64", "in",
+           lambda r: r.peaks.get("peak_wall_displacement_neg", math.nan),
+           "the same, negative side", "peaks"),
+    Column("peak_drift_{k}", "float64", "in", lambda r, k: _story(r.peaks, "peak_drift", k),
+           "peak drift of story k (1 at the bottom; NaN above a shorter variation's top)",
+           "peaks", per="story"),
+    Column("peak_drift_ratio_{k}", "float64", "-",
+           lambda r, k: _story(r.peaks, "peak_drift_ratio", k),
+           "peak drift of story k / its height", "peaks", per="story"),
+    Column("peak_floor_acceleration_{k}", "float64", "g",
+           lambda r, k: _story(r.peaks, "peak_floor_acceleration", k),
+           "peak absolute acceleration of the floor on top of story k", "peaks", per="story"),
+    Column("peak_drift_ratio", "float64", "-",
+           lambda r: float(np.asarray(r.peaks["peak_drift_ratio"], dtype=float).max(initial=0.0)),
+           "largest peak drift ratio over the stories", "peaks"),
+    Column("peak_base_acceleration", "float64", "g",
+           lambda r: _optional(r.peaks.get("peak_base_acceleration")),
+           "peak absolute acceleration of the base mat", "peaks"),
+    Column("pounding", "bool", "",
+           lambda r: bool(r.peaks["impacts_pos"] + r.peaks["impacts_neg"] > 0),
+           "any impact", "peaks"),
+    Column("t_reached", "float64", "s", lambda r: float(r.time[-1]),
+           "the run's last time (the collapse time when it stopped there)", "peaks"),
+    Column("cpu_seconds", "float64", "s", None,
+           "CPU of the whole run in its thread: model lookup, record scaling, solver, peaks "
+           "(NaN when its task was lost)", "peaks"),
+    Column("solver_seconds", "float64", "s", lambda r: float(r.peaks["cpu_seconds"]),
+           "process CPU of the compiled loop, from the solver", "peaks"),
+    Column("steps", "int64", "", lambda r: int(r.peaks["steps"]),
+           "solver steps", "peaks"),
 )
 
 
