@@ -105,6 +105,14 @@ class Trace(NamedTuple):
 
 # ---- worker side ------------------------------------------------------------------------------
 _VARIATIONS = {}
+_FIELDS = {}
+
+
+def _fields(suite):
+    """The table's columns (:func:`femoat.suite.columns.fields`), once per suite and process."""
+    if suite.hash not in _FIELDS:
+        _FIELDS[suite.hash] = cols.fields(suite)
+    return _FIELDS[suite.hash]
 
 
 def _variation(suite, var_index):
@@ -134,7 +142,7 @@ def run_one(suite, s, out_dir=None):
     from femoat.integration.solve import SolverError
 
     clock = time.thread_time()
-    fields = cols.fields(suite)
+    fields = _fields(suite)
     at = cols.planned(suite, s)
     row = {**cols.planned_values(fields, at), **cols.failed_values(fields)}
     try:
@@ -156,7 +164,7 @@ def run_one(suite, s, out_dir=None):
 
 def failed_row(suite, s, exc):
     """The row of a run whose task failed outside :func:`run_one` (e.g. its worker died)."""
-    fields = cols.fields(suite)
+    fields = _fields(suite)
     at = cols.planned(suite, s)
     return {**cols.planned_values(fields, at), **cols.failed_values(fields), "status": "error",
             "error": f"run {s.run_id} ({_describe(at)}): its task failed on the cluster "
