@@ -42,7 +42,7 @@ levels = {levels}
 def plain_loop(suite):
     """The suite's runs with femoat.run.run in a loop: (wall s, CPU s, solver CPU s, runs)."""
     from femoat.suite import variations as var
-    from femoat.suite.model import build_model, run_model
+    from femoat.suite.model import build_variation, run_variation
     from femoat.suite.records import applied_motion
     from femoat.suite.runs import plan
 
@@ -52,10 +52,10 @@ def plain_loop(suite):
     models = {}
     for s in specs:
         if s.var not in models:
-            models[s.var] = build_model(var.apply(suite.tables, suite.combos[s.var]))
+            models[s.var] = build_variation(var.apply(suite.tables, suite.combos[s.var]))
         motion = applied_motion(suite.records[s.rec], suite.scaling.factor(s.rec, s.im),
                                 suite.time_scale, suite.duration)
-        result, _ = run_model(models[s.var], motion, suite.extra_time)
+        result = run_variation(models[s.var], motion, suite.extra_time)
         solver += result.meta["stats"]["cpu_seconds"]
     return time.perf_counter() - wall, time.process_time() - cpu, solver, len(specs)
 

@@ -6,7 +6,6 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -106,8 +105,8 @@ def test_local_cluster_by_default(tmp_path):
 
 
 def test_a_run_that_kills_its_task_is_isolated_and_stored(tmp_path, monkeypatch):
-    # a worker thread in this process (processes=False) sees a run_batch that fails whenever
-    # its batch holds one particular run: the batch is split, the others are stored
+    # a worker thread in this process (processes=False) sees a Batch task that fails whenever
+    # it holds one particular run: the batch is split, the others are stored
     from dask.distributed import LocalCluster
 
     from femoat.suite import runs
@@ -118,14 +117,14 @@ def test_a_run_that_kills_its_task_is_isolated_and_stored(tmp_path, monkeypatch)
                                                                   "batch_size = 4"))
     suite = load_suite(path)
     poisoned = runs.plan(suite)[1].run_id
-    real = runs.run_batch
+    real = runs.Batch.run
 
-    def run_batch(suite, specs, out_dir=None):
-        if any(s.run_id == poisoned for s in specs):
+    def run(batch, suite, out_dir=None):
+        if any(s.run_id == poisoned for s in batch.specs):
             raise RuntimeError("worker lost")
-        return real(suite, specs, out_dir)
+        return real(batch, suite, out_dir)
 
-    monkeypatch.setattr(runs, "run_batch", run_batch)
+    monkeypatch.setattr(runs.Batch, "run", run)
     with LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cluster:
         summary = run_suite(suite, tmp_path / "out", scheduler=cluster.scheduler_address,
                             stream=io.StringIO())

@@ -1,6 +1,5 @@
 """Suite files: validation before any run (errors name the key or file), P695 anchoring."""
 
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -178,7 +177,7 @@ def test_a_binary_or_mistyped_suite_file_names_itself(tmp_path):
     bad.write_bytes(b"\xff\xfe[records]\n")
     with pytest.raises(ValueError, match="bad.toml"):
         load_suite(bad)
-    from femoat.suite.model import build_model
+    from femoat.suite.model import build_variation
 
     with pytest.raises(ValueError, match=r"\[solver\] max_newton"):
-        build_model({"solver": {"max_newton": 3.5}})
+        build_variation({"solver": {"max_newton": 3.5}})

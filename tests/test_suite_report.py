@@ -191,6 +191,25 @@ def test_stripes_report_and_degenerate_variation(tmp_path):
     assert (d / "report" / "fragility.png").stat().st_size > 5000
 
 
+def test_the_report_reads_the_folder_through_load_table(tmp_path):
+    # a task whose rows were stored twice (an interrupted task rerun: two parts with the same
+    # runs), parts in any order: the report counts each run once and sees them in run_id
+    # order, as load_table gives them
+    t = synthetic_ida()
+    d = tmp_path / "suite"
+    (d / "runs").mkdir(parents=True)
+    t.iloc[::-1].to_parquet(d / "runs" / "part-b.parquet")  # every run, reversed
+    t.iloc[:40].to_parquet(d / "runs" / "part-a.parquet")  # the first 40 again
+    (d / "suite.json").write_text(json.dumps(META))
+    run_report(d)
+    twice = pd.read_csv(d / "report" / "collapse_summary.csv")
+    write_report(t.sort_values("run_id").reset_index(drop=True), META, tmp_path / "once")
+    once = pd.read_csv(tmp_path / "once" / "collapse_summary.csv")
+    # E: 11 records, each its grid runs below θ·e^(βq) plus its collapse run, plus 1 failure
+    assert once["n_runs"].sum() == len(t) - 1 == twice["n_runs"].sum()
+    pd.testing.assert_frame_equal(twice, once)
+
+
 def test_ida_levels_carry_collapsed_records_forward(tmp_path):
     write_report(synthetic_ida(), META, tmp_path)
     resp = pd.read_csv(tmp_path / "response_by_variation.csv")
@@ -238,7 +257,11 @@ def test_messy_suite_reports_every_variation_with_reasons(tmp_path):
     assert np.isnan(h["CMR [-]"]) and np.isnan(h["S_MT [g]"]) and "PGA" in h["note"]
     assert h["verdict"] == "no margin"
     readme = _readme(tmp_path)
-    assert "default, not measured" in readme and "PGA" in readme and "'exclude'" in readme
+    assert "PGA" in readme and "'exclude'" in readme
+    # without a margin the P695 inputs (here the default μT) are not stated as used: the README
+    # says what is missing and why instead
+    assert "mu_T = 3" not in readme and "Not in this report: - the FEMA P695 margin" in readme
+    assert "(SDC, mu_T, quality ratings) are not used" in readme
     assert all(p.stat().st_size > 0 for p in paths)
 
 
@@ -284,7 +307,7 @@ def test_mu_t_ratings_and_sdc_from_the_suite_file_move_the_margin_as_fema_p695_s
     assert (s.loc["E", "beta_TOT [-]"], s.loc["E", "ACMR10% [-]"]) == (0.6, 2.157)
     assert s.loc["E", "verdict"] == "pass"
     readme = _readme(tmp_path / "beta")
-    assert "mu_T = 8 (suite file [p695] mu_t)" in readme
+    assert "mu_T = 8 (suite file [p695] mu_t)" in readme and "Not in this report" not in readme
     assert "beta_TOT = 0.6 (suite file [p695] beta_total (given directly))" in readme
 
 

@@ -347,22 +347,6 @@ def test_headline_suite_runs_to_collapse_and_reports(tmp_path):
                                                           rel=5e-4)
 
 
-def test_a_pga_suite_reports_and_prints_its_verdict(tmp_path, capsys):
-    # [scaling] method = "pga" has no S_MT: the report once died on float(meta["smt"]) (None);
-    # now the fragility and responses are written, and the verdict says "no margin"
-    from femoat.cli import main
-
-    text = SMALL.replace('method = "ida"\nperiod = 1.0\nlevels = [0.5, 1.5]',
-                         'method = "pga"\ntargets = [0.3, 0.9]')
-    out = tmp_path / "out"
-    assert main(["suite", str(_suite(tmp_path, text, duration=1.0)), "--serial",
-                 "--out", str(out)]) == 0
-    printed = _verdict_table(capsys.readouterr().out)
-    assert [r["verdict"] for r in printed] == ["no margin", "no margin"]
-    csv = pd.read_csv(out / "report" / "collapse_summary.csv")
-    assert csv["CMR [-]"].isna().all() and (out / "report" / "fragility.png").is_file()
-
-
 def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
     # Ctrl-C on a terminal sends SIGINT to the whole process group: the CLI and its local Dask
     # workers. Full records, one run per task, 3 records x 5 laws x 6 levels = 90 runs: long

@@ -84,7 +84,7 @@ def print_verdict(out, options, as_json=False, extra=None, write=True, force=Fal
         summary = pd.read_csv(Path(out) / "report" / "collapse_summary.csv")
     inputs = rp.p695_inputs(meta, **options)
     meta = {**meta, "im_kind": meta.get("im_kind") or "sa"}
-    smt, _, note = margin_basis(meta, inputs)
+    basis = margin_basis(meta, inputs)
     if not write:
         summary = rp.collapse_summary(table, meta, inputs)
     if as_json:
@@ -94,10 +94,10 @@ def print_verdict(out, options, as_json=False, extra=None, write=True, force=Fal
                  "verdict": "units in each key, as in collapse_summary.csv"}
         print(json.dumps({**(extra or {}), "stored": counts(table),
                           "p695_inputs": inputs.statements(),
-                          "S_MT [g]": smt, "verdict": rows, "units": units}, default=str))
+                          "S_MT [g]": basis.smt, "verdict": rows, "units": units}, default=str))
     else:
         where = f"report in {Path(out) / 'report'}" if write else f"results in {out}"
-        print(verdict_text(table, summary, inputs, smt, note, where), end="")
+        print(verdict_text(table, summary, inputs, basis, where), end="")
     return paths
 
 
@@ -149,7 +149,9 @@ def run(args):
         finished.mark(args.suite, out)
     this = (f"femoat suite: this invocation ran {summary['runs']} runs"
             + (f" in {summary['elapsed']:.0f} s" if "elapsed" in summary else ""))
-    if not any((Path(out) / "runs").glob("*.parquet")):
+    from femoat.suite.table import part_files
+
+    if not part_files(out):
         print(json.dumps(summary) if args.json else f"{this}; nothing stored in {out}")
         return 0 if summary["failed_tasks"] == 0 else 1
     if not args.json:

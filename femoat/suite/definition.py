@@ -57,8 +57,8 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     batch_size = 48               # runs per task (default: <= 48, >= 4 tasks per worker)
     histories = ["<run_id>"]      # runs whose full history is saved (DIR/histories/<id>.npz)
     stop_on_collapse = true       # stop a run at collapse (default for [collapse] stop)
-    solver_failure = "separate"   # how the report counts solver failures: "separate" |
-                                  # "collapse" | "exclude" (stored in suite.json)
+    solver_failure = "separate"   # how the report counts solver failures (stored in
+                                  # suite.json; the choices: femoat.suite.policies)
 
 No key takes a random seed: nothing is random, a run gives the same bits wherever it runs. A
 hunt-and-fill trace counts a solver failure (or an error) as "did not survive" when it chooses
@@ -75,9 +75,10 @@ import functools
 import hashlib
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
+from femoat.suite import policies
 from femoat.suite import records as rec
 from femoat.suite import scaling as sc
 from femoat.suite import variations as var
@@ -85,7 +86,6 @@ from femoat.suite import variations as var
 TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run",
           "p695"}
 RUN_KEYS = {"batch_size", "histories", "stop_on_collapse", "solver_failure"}
-FAILURE_POLICIES = ("separate", "collapse", "exclude")
 HEADLINE = Path(__file__).with_name("headline.toml")
 
 
@@ -108,8 +108,8 @@ class Suite:
     stop_on_collapse: bool
     solver_failure: str
     n_stories: int
-    hash: str = field(default="")
-    code: str = field(default="")  # code_version() of the process that defined the suite
+    hash: str  # 16 hex digits of everything that changes a result (the module docstring)
+    code: str  # code_version() of the process that defined the suite
 
     def metadata(self):
         """suite.json: the definition, its hash and what the report needs."""
@@ -163,7 +163,7 @@ def load_suite(path=None):
 def suite_from_dict(d, base_dir=Path(".")):
     """Validate a parsed suite document; returns a :class:`Suite`."""
     from femoat.scenario import check_keys
-    from femoat.suite.model import build_model
+    from femoat.suite.model import build_variation
 
     check_keys(d, TABLES, "suite")
     for table in TABLES & set(d):
@@ -172,9 +172,7 @@ def suite_from_dict(d, base_dir=Path(".")):
                              f"not {d[table]!r}.")
     run = dict(d.get("run", {}))
     check_keys(run, RUN_KEYS, "[run]")
-    policy = run.get("solver_failure", "separate")
-    if policy not in FAILURE_POLICIES:
-        raise ValueError(f"[run] solver_failure = {policy!r}: use one of {list(FAILURE_POLICIES)}.")
+    policy = policies.check(run.get("solver_failure", policies.DEFAULT), "[run]")
     batch = run.get("batch_size")
     if batch is not None and (isinstance(batch, bool) or not isinstance(batch, int) or batch < 1):
         raise ValueError(f"[run] batch_size = {batch!r} must be a whole number >= 1.")
@@ -204,33 +202,31 @@ def suite_from_dict(d, base_dir=Path(".")):
     n_stories = 0
     for combo in combos:
         try:
-            m = build_model(var.apply(tables, combo), stop, base_dir)
+            m = build_variation(var.apply(tables, combo), stop, base_dir)
         except (ValueError, TypeError) as exc:
             raise ValueError(f"suite {_culprit(tables, combo, stop, base_dir)}: {exc}") from None
         n_stories = max(n_stories, len(m.story_heights))
     scaling = sc.scaling_from_dict(d.get("scaling", {}), refs, time_scale, duration)
-    suite = Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
-                  tuple(varied), tuple(combos), scaling, batch, tuple(histories), stop, policy,
-                  n_stories)
+    code = code_version()
     key = dict(model=tables, records=[(r.label, r.digest) for r in refs],
                time_scale=time_scale, duration=duration, extra_time=extra_time,
                variations=d.get("variations", {}), scaling=d.get("scaling", {}),
-               stop_on_collapse=stop, femoat=code_version())
-    object.__setattr__(suite, "code", code_version())
+               stop_on_collapse=stop, femoat=code)
     digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
-    object.__setattr__(suite, "hash", digest[:16])
-    return suite
+    return Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
+                 tuple(varied), tuple(combos), scaling, batch, tuple(histories), stop, policy,
+                 n_stories, hash=digest[:16], code=code)
 
 
 def _culprit(tables, combo, stop, base_dir):
     """Where a model error lies: the model tables themselves (a typo in [solver] fails every
     variation, and fails without any) or this variation's values."""
-    from femoat.suite.model import build_model
+    from femoat.suite.model import build_variation
 
     if not combo:
         return "model"
     try:
-        build_model(tables, stop, base_dir)
+        build_variation(tables, stop, base_dir)
     except (ValueError, TypeError):
         return "model (the tables, whatever the variation)"
     return f"variation {var.label(combo)}"

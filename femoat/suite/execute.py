@@ -58,20 +58,21 @@ def prepare(suite, out, overwrite=False):
 
 
 def pending(suite, out):
-    """The work left: ("batch", specs) tasks or ("trace", rec, var, stored) tasks."""
+    """The work left: ``(tasks, units)``, the tasks a list of :class:`~femoat.suite.runs.Batch`
+    or of :class:`~femoat.suite.runs.Trace`, the units the runs (traces) they hold."""
     stored = tb.stored_runs(out)
     if suite.scaling.hunt is None:
         todo = [s for s in rn.plan(suite) if s.run_id not in stored]
         size = suite.batch_size or default_batch_size(len(todo))
-        return [("batch", todo[i:i + size]) for i in range(0, len(todo), size)], len(todo)
+        return [rn.Batch(tuple(todo[i:i + size])) for i in range(0, len(todo), size)], len(todo)
     by_trace = {}
-    for rid, (rec, v, failed) in stored.items():
-        by_trace.setdefault(f"{rec}|{v}", {})[rid] = failed
+    for rid, run in stored.items():
+        by_trace.setdefault((run.record, run.variation), {})[rid] = not run.survived
     tasks = []
     for r, v in rn.traces(suite):
-        mine = by_trace.get(rn.trace_label(suite, r, v), {})
+        mine = by_trace.get(rn.trace_key(suite, r, v), {})
         if not _trace_complete(suite, r, v, mine):
-            tasks.append(("trace", r, v, mine))
+            tasks.append(rn.Trace(r, v, mine))
     return tasks, len(tasks)
 
 
@@ -117,7 +118,7 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
     try:
         if serial:
             for task in tasks:
-                _finish(suite, out, task, _call(suite, task, out), progress)
+                _finish(suite, out, task, task.run(suite, out), progress)
         else:
             _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file)
     finally:
@@ -146,16 +147,10 @@ def _worker_kernels():
     return "aot" if aot.load() is not None else "jit"
 
 
-def _call(suite, task, out):
-    if task[0] == "batch":
-        return rn.run_batch(suite, task[1], out)
-    return rn.run_trace(suite, task[1], task[2], task[3], out)
-
-
 def _finish(suite, out, task, rows, progress):
     if rows:
         tb.write_part(rows, suite, out)
-    progress.update(rows, units=len(task[1]) if task[0] == "batch" else 1)
+    progress.update(rows, units=task.units)
 
 
 LOCAL_WORKER_CONFIG = {
@@ -244,11 +239,7 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         absolute = str(Path(out).resolve())
 
         def submit(task):
-            if task[0] == "batch":
-                f = client.submit(rn.run_batch, shared, task[1], absolute, pure=False)
-            else:
-                f = client.submit(rn.run_trace, shared, task[1], task[2], task[3], absolute,
-                                  pure=False)
+            f = client.submit(task.run, shared, absolute, pure=False)
             futures[f] = task
             return f
 
@@ -258,13 +249,13 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
             try:
                 rows = f.result()
             except Exception as exc:  # noqa: BLE001 - e.g. a run that kills its worker
-                if task[0] == "batch" and len(task[1]) > 1:
+                if isinstance(task, rn.Batch) and len(task.specs) > 1:
                     # run the batch's runs one by one, so that only the culprit is lost
-                    for s in task[1]:
-                        pending_futures.add(submit(("batch", [s])))
+                    for s in task.specs:
+                        pending_futures.add(submit(rn.Batch((s,))))
                     continue
-                if task[0] == "batch":
-                    rows = [rn.failed_row(suite, task[1][0], exc)]
+                if isinstance(task, rn.Batch):
+                    rows = [rn.failed_row(suite, task.specs[0], exc)]
                 else:
                     summary["failed_tasks"] += 1
                     progress.stream.write(f"\nfemoat suite: a hunt-and-fill trace failed "

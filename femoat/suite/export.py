@@ -1,7 +1,6 @@
 """The results table in other shapes: an xarray Dataset of peaks, a pelicun demand file."""
 
-
-from femoat.suite.table import PEAKS, TAIL
+from femoat.suite.columns import column_of
 
 _ID = ["record", "im", "variation"]
 
@@ -11,14 +10,13 @@ def to_xarray(df):
 
     ``record`` is the record label (e.g. ``farfield/3b``), ``intensity`` the im [g] (kind in the
     ``im_kind`` attribute), ``variation`` the variation label; runs absent from the table
-    (hunt-and-fill traces at other intensities) are NaN. Every numeric outcome column becomes a
-    variable; ``status`` is kept as text.
+    (hunt-and-fill traces at other intensities) are NaN. Every numeric column of the intensity
+    as applied, the outcome and the peaks (:mod:`femoat.suite.columns`) becomes a variable;
+    ``status`` is kept as text.
     """
     import numpy as np
 
-    keep = [c for c in df.columns if c.startswith(("peak_", "collapse_", "impacts_"))
-            or c in {n for n, _ in PEAKS + TAIL} | {"collapsed", "scale_factor", "sa_t", "pga",
-                                                     "status"}]
+    keep = [c for c in df.columns if c not in _ID and _variable(column_of(c))]
     frame = df[_ID + keep].copy()
     for c in keep:
         if c != "status":  # nullable Int64 / boolean columns: NaN where missing
@@ -29,7 +27,15 @@ def to_xarray(df):
     for c in ds.data_vars:
         if ds[c].dtype == object and c != "status":
             ds[c] = ds[c].astype(np.float64)
+        if column_of(c).unit:
+            ds[c].attrs["units"] = column_of(c).unit
     return ds
+
+
+def _variable(col):
+    """Whether a table column is a variable of :func:`to_xarray`."""
+    return col is not None and col.section in ("intensity", "outcome", "peaks") and (
+        col.dtype != "string" or col.name == "status")
 
 
 def to_demand_csv(df, path, n_stories=None):

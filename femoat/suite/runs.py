@@ -1,10 +1,13 @@
-"""Runs of a suite: their identity, one run as a table row, and the task functions workers call.
+"""Runs of a suite: their identity, one run as a table row, and the tasks workers run.
 
 A run is (record, variation, intensity). Its ``run_id`` is a hash of the suite hash, the record,
 the variation and the intensity (``repr`` of the float, exact), so it is stable across processes
-and reruns: resuming skips every stored run_id. Worker processes keep each variation's model
-and each record (:func:`femoat.suite.records.load_motion`) in a per-process cache and return
-only scalars, one dict per run (a row of the table, :mod:`femoat.suite.table`).
+and reruns: resuming skips every stored run_id. A task is a :class:`Batch` of runs at fixed
+intensities or a :class:`Trace` (one IDA curve by hunt-and-fill); ``task.run(suite, out_dir)``
+returns its rows. Worker processes keep each variation (:func:`femoat.suite.model.
+build_variation`) and each record (:func:`femoat.suite.records.load_motion`) in a per-process
+cache and return only scalars, one dict per run: a row of the table, its columns read by
+:mod:`femoat.suite.columns`.
 """
 
 import hashlib
@@ -13,12 +16,10 @@ import time
 from pathlib import Path
 from typing import NamedTuple
 
-import numpy as np
-
+from femoat.suite import columns as cols
 from femoat.suite import variations as var
 from femoat.suite.huntfill import hunt_fill
-from femoat.collapse import CRITERIA
-from femoat.suite.model import build_model, run_model
+from femoat.suite.model import build_variation, run_variation
 from femoat.suite.records import applied_motion
 
 
@@ -53,25 +54,78 @@ def traces(suite):
     return [(r, v) for v in range(len(suite.combos)) for r in range(len(suite.records))]
 
 
-def trace_label(suite, rec, var_index):
-    return f"{suite.records[rec].label}|{var.label(suite.combos[var_index])}"
+def trace_key(suite, rec, var_index):
+    """(record label, variation label) of a trace: how its stored runs are found."""
+    return suite.records[rec].label, var.label(suite.combos[var_index])
+
+
+class Batch(NamedTuple):
+    """A task: runs at fixed intensities, one after the other."""
+
+    specs: tuple  # RunSpec
+
+    @property
+    def units(self):
+        """Units of work for the progress: runs."""
+        return len(self.specs)
+
+    def run(self, suite, out_dir=None):
+        """Run every spec; return their rows. ``out_dir`` receives requested histories."""
+        return [run_one(suite, s, out_dir) for s in self.specs]
+
+
+class Trace(NamedTuple):
+    """A task: one IDA curve, of record ``rec`` and variation ``var``, by hunt-and-fill."""
+
+    rec: int
+    var: int
+    stored: dict  # run_id -> bool: its runs already in the table (True: did not survive)
+
+    @property
+    def units(self):
+        """Units of work for the progress: one trace."""
+        return 1
+
+    def run(self, suite, out_dir=None):
+        """Trace the curve; return the rows of the runs it made. A run that collapsed, failed
+        to converge or raised counts as "did not survive"."""
+        rows = []
+
+        def collapsed(im):
+            s = spec(suite, self.rec, self.var, im)
+            if s.run_id in self.stored:
+                return self.stored[s.run_id]
+            row = run_one(suite, s, out_dir)
+            rows.append(row)
+            return row["status"] != "ok"
+
+        hunt_fill(collapsed, **suite.scaling.hunt)
+        return rows
 
 
 # ---- worker side ------------------------------------------------------------------------------
-_MODELS = {}
+_VARIATIONS = {}
+_FIELDS = {}
 
 
-def _model(suite, var_index):
+def _fields(suite):
+    """The table's columns (:func:`femoat.suite.columns.fields`), once per suite and process."""
+    if suite.hash not in _FIELDS:
+        _FIELDS[suite.hash] = cols.fields(suite)
+    return _FIELDS[suite.hash]
+
+
+def _variation(suite, var_index):
     key = (suite.hash, var_index)
-    if key not in _MODELS:
+    if key not in _VARIATIONS:
         tables = var.apply(suite.tables, suite.combos[var_index])
-        _MODELS[key] = build_model(tables, suite.stop_on_collapse, Path(suite.base_dir))
-    return _MODELS[key]
+        _VARIATIONS[key] = build_variation(tables, suite.stop_on_collapse, Path(suite.base_dir))
+    return _VARIATIONS[key]
 
 
 def warm(suite):
-    """Build every variation's model and load the first record (for a FEMA P695 suite, its
-    whole set) in this process, so that the first runs do not pay for it."""
+    """Build every variation and load the first record (for a FEMA P695 suite, its whole set)
+    in this process, so that the first runs do not pay for it."""
     from femoat.suite.definition import code_version
     from femoat.suite.records import load_motion
 
@@ -79,33 +133,8 @@ def warm(suite):
         raise RuntimeError(f"this worker runs femoat {code_version()}, the suite was defined "
                            f"with {suite.code}: install the same femoat on every worker.")
     for v in range(len(suite.combos)):
-        _model(suite, v)
+        _variation(suite, v)
     load_motion(suite.records[0])
-
-
-def run_batch(suite, specs, out_dir=None):
-    """Task: run ``specs``; return their rows. ``out_dir`` receives requested histories."""
-    return [run_one(suite, s, out_dir) for s in specs]
-
-
-def run_trace(suite, rec, var_index, stored, out_dir=None):
-    """Task: trace one IDA curve by hunt-and-fill; return the rows of the runs it made.
-
-    stored : dict run_id -> bool  runs already in the table (True: did not survive)
-    A run that collapsed, failed to converge or raised counts as "did not survive".
-    """
-    rows = []
-
-    def collapsed(im):
-        s = spec(suite, rec, var_index, im)
-        if s.run_id in stored:
-            return stored[s.run_id]
-        row = run_one(suite, s, out_dir)
-        rows.append(row)
-        return row["status"] != "ok"
-
-    hunt_fill(collapsed, **suite.scaling.hunt)
-    return rows
 
 
 def run_one(suite, s, out_dir=None):
@@ -113,93 +142,37 @@ def run_one(suite, s, out_dir=None):
     from femoat.integration.solve import SolverError
 
     clock = time.thread_time()
-    row = _identity(suite, s)
+    fields = _fields(suite)
+    at = cols.planned(suite, s)
+    row = {**cols.planned_values(fields, at), **cols.failed_values(fields)}
     try:
-        model = _model(suite, s.var)
-        motion = applied_motion(suite.records[s.rec], row["scale_factor"], suite.time_scale,
-                                suite.duration)
+        variation = _variation(suite, s.var)
+        motion = applied_motion(at.record, at.factor, suite.time_scale, suite.duration)
         keep = out_dir is not None and s.run_id in suite.histories
-        result, collapse = run_model(model, motion, suite.extra_time, history=keep)
-        row.update(_outcome(suite, result, collapse, model))
+        result = run_variation(variation, motion, suite.extra_time, history=keep)
+        row.update(cols.result_values(fields, result))
         if keep:
             result.save(Path(out_dir) / "histories" / f"{s.run_id}.npz")
     except SolverError as exc:
-        row.update(status="solver_failure", error=f"run {s.run_id} ({_describe(suite, s)}): {exc}")
+        row.update(status="solver_failure", error=f"run {s.run_id} ({_describe(at)}): {exc}")
     except Exception as exc:  # noqa: BLE001 - a failing run is stored, the suite goes on
         row.update(status="error",
-                   error=f"run {s.run_id} ({_describe(suite, s)}): {type(exc).__name__}: {exc}")
+                   error=f"run {s.run_id} ({_describe(at)}): {type(exc).__name__}: {exc}")
     row["cpu_seconds"] = time.thread_time() - clock
     return row
 
 
 def failed_row(suite, s, exc):
     """The row of a run whose task failed outside :func:`run_one` (e.g. its worker died)."""
-    row = _identity(suite, s)
-    row.update(status="error", error=f"run {s.run_id} ({_describe(suite, s)}): its task failed "
-               f"on the cluster ({type(exc).__name__}: {exc}), e.g. the run kills its worker",
-               cpu_seconds=math.nan)
-    return row
+    fields = _fields(suite)
+    at = cols.planned(suite, s)
+    return {**cols.planned_values(fields, at), **cols.failed_values(fields), "status": "error",
+            "error": f"run {s.run_id} ({_describe(at)}): its task failed on the cluster "
+            f"({type(exc).__name__}: {exc}), e.g. the run kills its worker",
+            "cpu_seconds": math.nan}
 
 
-def _describe(suite, s):
-    r = suite.records[s.rec]
-    return (f"{r.record_name} ({r.label}) x {suite.scaling.factor(s.rec, s.im):.6g}, "
-            f"{suite.scaling.im_kind} {s.im:.6g} g, {var.label(suite.combos[s.var])}")
-
-
-def _identity(suite, s):
-    from femoat.suite.definition import code_version
-
-    r, sc = suite.records[s.rec], suite.scaling
-    factor = sc.factor(s.rec, s.im)
-    row = dict(run_id=s.run_id, suite_hash=suite.hash, femoat_version=code_version(),
-               record=r.label, variation=var.label(suite.combos[s.var]),
-               record_set=r.record_set, record_id=r.record_id, rsn=r.rsn,
-               record_name=r.record_name, component=r.component, earthquake=r.earthquake,
-               magnitude=r.magnitude, distance_km=r.distance_km, pulse=r.pulse,
-               scale_factor=factor, im_kind=sc.im_kind, im=s.im,
-               sa_t=None if sc.sa[s.rec] is None else sc.sa[s.rec] * factor,
-               pga=sc.pga[s.rec] * factor)
-    row.update(suite.combos[s.var])
-    row.update(status=None, error=None, collapsed=False)
-    for c in CRITERIA:
-        row[f"collapse_{c}"] = False
-        row[f"collapse_{c}_time"] = math.nan
-    return row
-
-
-def _outcome(suite, result, collapse, model):
-    p = result.peaks
-    n = len(model.story_heights)
-    drift = np.asarray(p["peak_drift"], dtype=float)
-    ratio = np.asarray(p["peak_drift_ratio"], dtype=float)
-    floor = p.get("peak_floor_acceleration")
-    floor = [math.nan] * n if floor is None else floor
-    out = dict(status="collapsed" if collapse["collapsed"] else "ok",
-               collapsed=bool(collapse["collapsed"]))
-    for c in CRITERIA:
-        t = collapse.get(c)
-        out[f"collapse_{c}"] = t is not None
-        out[f"collapse_{c}_time"] = math.nan if t is None else float(t)
-    out.update(peak_impact_force_pos=p["peak_impact_force_pos"],
-               peak_impact_force_neg=p["peak_impact_force_neg"],
-               impacts_pos=int(p["impacts_pos"]), impacts_neg=int(p["impacts_neg"]),
-               peak_base_displacement=p["peak_base_displacement"])
-    for side in ("pos", "neg"):  # NaN where there is no wall on that side
-        out[f"peak_wall_displacement_{side}"] = p.get(f"peak_wall_displacement_{side}", math.nan)
-    for k in range(suite.n_stories):
-        inside = k < n
-        out[f"peak_drift_{k + 1}"] = float(drift[k]) if inside else math.nan
-        out[f"peak_drift_ratio_{k + 1}"] = float(ratio[k]) if inside else math.nan
-        out[f"peak_floor_acceleration_{k + 1}"] = float(floor[k]) if inside else math.nan
-    out.update(peak_drift_ratio=float(ratio.max(initial=0.0)),
-               peak_base_acceleration=_nan_if_none(p.get("peak_base_acceleration")),
-               pounding=bool(p["impacts_pos"] + p["impacts_neg"] > 0),
-               t_reached=float(result.time[-1]),
-               solver_seconds=float(result.meta["stats"]["cpu_seconds"]),
-               steps=int(p["steps"]))
-    return out
-
-
-def _nan_if_none(x):
-    return math.nan if x is None else float(x)
+def _describe(at):
+    sc = at.suite.scaling
+    return (f"{at.record.record_name} ({at.record.label}) x {at.factor:.6g}, "
+            f"{sc.im_kind} {at.spec.im:.6g} g, {var.label(at.suite.combos[at.spec.var])}")

@@ -27,12 +27,44 @@ Methods:
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-KEYS = {"method", "im", "period", "sdc", "multipliers", "anchor", "levels", "hunt_fill", "step0",
-        "step_increment", "resolution", "max_runs", "targets"}
 SDCS = ("Dmax", "Dmin", "Cmax", "Cmin", "Bmax", "Bmin")
+HUNT_KEYS = frozenset({"hunt_fill", "step0", "step_increment", "resolution", "max_runs"})
+
+
+class Method(NamedTuple):
+    """A ``[scaling] method``: its intensities, intensity measure and keys, and what it does."""
+
+    levels: str  # the key listing its intensities
+    im_kind: str | None  # its intensity measure; None: [scaling] im ("sa" by default)
+    keys: frozenset  # the keys it takes besides method and period (and hunt-and-fill's)
+    description: str  # how its runs are scaled, for the report's README.txt
+
+
+METHODS = {
+    "p695": Method("multipliers", "sa", frozenset({"multipliers", "sdc", "anchor"}),
+                   "FEMA P695 stripes: each record normalized by its FEMA P695 normalization "
+                   "factor, the set anchored so that its median Sa(T) is S_MT, then scaled to "
+                   "[scaling] multipliers x S_MT"),
+    "ida": Method("levels", None, frozenset({"im", "levels", "sdc", "hunt_fill"}),
+                  "incremental dynamic analysis: every record at each intensity of [scaling] "
+                  "levels"),
+    "pga": Method("targets", "pga", frozenset({"targets", "sdc"}),
+                  "PGA targets: every record scaled to each PGA of [scaling] targets (stripes)"),
+}
+HUNT_FILL = ("incremental dynamic analysis by hunt-and-fill: each record's curve traced up to "
+             "its collapse and bracketed to [scaling] resolution")
+KEYS = {"method", "period", "levels", "multipliers", "targets", "im", "sdc", "anchor"} | HUNT_KEYS
+
+
+def describe(method, hunt_fill=False):
+    """How the runs of ``method`` were scaled, one sentence (the report's README.txt)."""
+    if hunt_fill:
+        return HUNT_FILL
+    return METHODS[method].description if method in METHODS else "not recorded in suite.json"
 
 
 @dataclass(frozen=True)
@@ -74,9 +106,11 @@ def scaling_from_dict(d, refs, time_scale, duration):
     d = dict(d)
     check_keys(d, KEYS, "[scaling]")
     method = d.get("method", "ida")
-    if method not in ("p695", "ida", "pga"):
-        raise ValueError(f"[scaling] method = {method!r}: use 'p695', 'ida' or 'pga'.")
-    im_kind = {"p695": "sa", "pga": "pga"}.get(method) or d.get("im", "sa")
+    if method not in METHODS:
+        *first, last = (repr(m) for m in METHODS)
+        raise ValueError(f"[scaling] method = {method!r}: use {', '.join(first)} or {last}.")
+    m = METHODS[method]
+    im_kind = m.im_kind or d.get("im", "sa")
     if im_kind not in ("sa", "pga"):
         raise ValueError(f"[scaling] im = {im_kind!r}: use 'sa' or 'pga'.")
     period = d.get("period")
@@ -92,16 +126,14 @@ def scaling_from_dict(d, refs, time_scale, duration):
         if hunt["step_increment"] < 0 or hunt["max_runs"] < 1:
             raise ValueError("[scaling] step_increment must be >= 0 [g] and max_runs >= 1.")
     else:
-        key = {"p695": "multipliers", "ida": "levels", "pga": "targets"}[method]
+        key = m.levels
         if method != "p695" and key not in d:
             raise ValueError(f"[scaling] method = {method!r} needs {key} = [...] [g]"
                              + (" or hunt_fill = true" if method == "ida" else "") + ".")
         levels = _positive_list(d, key, [1.0] if method == "p695" else None)
-    hunt_keys = {"hunt_fill", "step0", "step_increment", "resolution", "max_runs"}
-    used = {"p695": {"multipliers", "sdc", "anchor"}, "pga": {"targets", "sdc"},
-            "ida": {"im", "levels", "sdc"} | (hunt_keys if hunt else {"hunt_fill"})}[method]
-    for key in hunt_keys | {"levels", "multipliers", "targets", "sdc", "im", "anchor"}:
-        if key in d and key not in used:
+    used = m.keys | (HUNT_KEYS if hunt else set()) | {"method", "period"}
+    for key in sorted(d):
+        if key not in used:
             raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
                              + (" without hunt_fill = true" if method == "ida" else "") + ".")
     sa, pga = _record_intensities(refs, period, time_scale, duration)

@@ -1,20 +1,20 @@
 """Per-variation views of a suite's run table: usable runs, collapse data, intensity levels and
 response statistics (median and lognormal dispersion across records).
 
-The run table has one row per run (columns listed in :mod:`femoat.suite.report`). A *variation* is
+The run table has one row per run (columns: :mod:`femoat.suite.columns`). A *variation* is
 one combination of the varied scenario keys (``meta["varied"]``, e.g. "walls.law" ×
 "walls.preset"); a *record* is one (record_set, record_id, component): as in FEMA P695, each
 horizontal component of a pair counts as a record.
 
-Solver failures follow ``meta["solver_failure"]``: "separate" keeps them out of the fragility and
-statistics and reports their count, "collapse" counts them as collapses, "exclude" drops them
-(their count is still reported). Runs with status "error" never enter and are counted apart.
+Solver failures follow ``meta["solver_failure"]``, one of :data:`femoat.suite.policies.
+SOLVER_FAILURE`. Runs with status "error" never enter and are counted apart.
 """
 
 import numpy as np
 import pandas as pd
 
-POLICIES = ("separate", "collapse", "exclude")
+from femoat.suite import policies
+
 RECORD_KEYS = ("record_set", "record_id", "component")
 LEVEL_DIGITS = 4  # stripes: IMs equal to 4 significant digits are one level
 NEAREST = np.log(1.25)  # hunt-and-fill IDA: a record's run within ±25 % of a level stands for it
@@ -45,8 +45,7 @@ def record_keys(table):
 
 def usable_runs(table, policy):
     """The runs the fragility and statistics use, with an effective bool column ``collapse``."""
-    if policy not in POLICIES:
-        raise ValueError(f"solver_failure policy must be one of {POLICIES}, not {policy!r}")
+    policies.check(policy, "the report's")
     t = table[table["status"] != "error"]
     failed = (t["status"] == "solver_failure").to_numpy()
     collapsed = (t["status"] == "collapsed").to_numpy()

@@ -1,75 +1,29 @@
 """The results table: one row per run, Parquet part files in ``DIR/runs/``, one per batch.
 
 Each part is written atomically (:mod:`femoat.atomic`), so a part on disk is always complete;
-an interrupted suite loses at most the batches in flight. Units: forces [kip], displacements
-[in], accelerations and intensities [g], times [s], drift ratios [-]. Columns, in order:
-
-* identity: run_id, suite_hash, femoat_version, record (label), variation (label), record_set,
-  record_id, rsn, record_name (PEER component name), component, earthquake, magnitude,
-  distance_km (closest to the rupture plane), pulse;
-* intensity: scale_factor (total factor on the unscaled record), im_kind ('sa' | 'pga'), im,
-  sa_t and pga as applied; then one column per varied key, named by its dotted key;
-* outcome: status ('ok' | 'collapsed' | 'solver_failure' | 'error'), error (naming the run),
-  collapsed, collapse_<c> and collapse_<c>_time (NaN if not reached) for c in drift, isolator,
-  wall_displacement, wall_force;
-* peaks: peak_impact_force_pos/neg, impacts_pos/neg, peak_base_displacement,
-  peak_wall_displacement_pos/neg, peak_drift_<k>, peak_drift_ratio_<k>, peak_drift_ratio (max
-  over stories), peak_floor_acceleration_<k>, peak_base_acceleration, pounding (any impact),
-  t_reached (the run's last time: the collapse time when it stopped there), cpu_seconds (CPU
-  of the whole run in its thread: model lookup, record scaling, solver, peaks), solver_seconds
-  (process CPU of the compiled loop, from the solver), steps.
+an interrupted suite loses at most the batches in flight. The columns, their types and units
+come from :data:`femoat.suite.columns.COLUMNS` (listed in docs/suite_table.md).
+:func:`load_table` is the only reader of the parts: everything else (the resume, the report,
+the exports) reads the table through it, with its de-duplication and its run_id order.
 """
 
 import hashlib
 from pathlib import Path
+from typing import NamedTuple
 
-from femoat.collapse import CRITERIA
-
-IDENTITY = [("run_id", "string"), ("suite_hash", "string"), ("femoat_version", "string"),
-            ("record", "string"), ("variation", "string"), ("record_set", "string"),
-            ("record_id", "string"), ("rsn", "int64"), ("record_name", "string"),
-            ("component", "string"), ("earthquake", "string"), ("magnitude", "float64"),
-            ("distance_km", "float64"), ("pulse", "bool"), ("scale_factor", "float64"),
-            ("im_kind", "string"), ("im", "float64"), ("sa_t", "float64"), ("pga", "float64")]
-PEAKS = [("peak_impact_force_pos", "float64"), ("peak_impact_force_neg", "float64"),
-         ("impacts_pos", "int64"), ("impacts_neg", "int64"),
-         ("peak_base_displacement", "float64"), ("peak_wall_displacement_pos", "float64"),
-         ("peak_wall_displacement_neg", "float64")]
-TAIL = [("peak_drift_ratio", "float64"), ("peak_base_acceleration", "float64"),
-        ("pounding", "bool"), ("t_reached", "float64"), ("cpu_seconds", "float64"),
-        ("solver_seconds", "float64"), ("steps", "int64")]
-
-
-def columns(suite):
-    """[(name, arrow type name)] of ``suite``'s table."""
-    cols = list(IDENTITY)
-    for key in suite.varied:
-        cols.append((key, _value_type([c[key] for c in suite.combos])))
-    cols += [("status", "string"), ("error", "string"), ("collapsed", "bool")]
-    for c in CRITERIA:
-        cols += [(f"collapse_{c}", "bool"), (f"collapse_{c}_time", "float64")]
-    cols += PEAKS
-    for k in range(1, suite.n_stories + 1):
-        cols += [(f"peak_drift_{k}", "float64"), (f"peak_drift_ratio_{k}", "float64"),
-                 (f"peak_floor_acceleration_{k}", "float64")]
-    return cols + TAIL
-
-
-def _value_type(values):
-    if all(isinstance(v, bool) for v in values):
-        return "bool"
-    if all(isinstance(v, int) and not isinstance(v, bool) for v in values):
-        return "int64"
-    if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
-        return "float64"
-    return "string"
+from femoat.suite import columns as cols
 
 
 def schema(suite):
+    """The Parquet schema of ``suite``'s table (:func:`femoat.suite.columns.fields`)."""
+    return _schema(cols.fields(suite))
+
+
+def _schema(fields):
     import pyarrow as pa
 
     types = dict(bool=pa.bool_(), int64=pa.int64(), float64=pa.float64(), string=pa.string())
-    return pa.schema([(name, types[kind]) for name, kind in columns(suite)])
+    return pa.schema([(f.name, types[f.dtype]) for f in fields])
 
 
 def write_part(rows, suite, out):
@@ -79,13 +33,11 @@ def write_part(rows, suite, out):
 
     from femoat.atomic import atomic_path
 
-    types = dict(columns(suite))
-    clean = []
-    for row in rows:
-        r = {k: (str(v) if types.get(k) == "string" and v is not None else v)
-             for k, v in row.items()}
-        clean.append(r)
-    table = pa.Table.from_pylist(clean, schema=schema(suite))
+    fields = cols.fields(suite)
+    text = {f.name for f in fields if f.dtype == "string"}
+    clean = [{k: (str(v) if k in text and v is not None else v) for k, v in row.items()}
+             for row in rows]
+    table = pa.Table.from_pylist(clean, schema=_schema(fields))
     name = hashlib.sha256("|".join(r["run_id"] for r in rows).encode()).hexdigest()[:16]
     path = Path(out) / "runs" / f"part-{name}.parquet"
     with atomic_path(path) as tmp:
@@ -93,7 +45,9 @@ def write_part(rows, suite, out):
     return path
 
 
-def _parts(out):
+def part_files(out):
+    """The part files of the suite folder ``out``, sorted (what a report or a finished mark
+    depends on; read them with :func:`load_table`)."""
     folder = Path(out) / "runs"
     return sorted(folder.glob("part-*.parquet")) if folder.is_dir() else []
 
@@ -103,7 +57,7 @@ def load_table(out, columns=None):
     import pandas as pd
     import pyarrow.parquet as pq
 
-    parts = _parts(out)
+    parts = part_files(out)
     if not parts:
         if not (Path(out) / "suite.json").is_file():
             raise FileNotFoundError(f"{out} is not a suite folder (no suite.json, no runs/).")
@@ -121,8 +75,17 @@ def load_table(out, columns=None):
     return df.sort_values("run_id", kind="stable").reset_index(drop=True)
 
 
+class StoredRun(NamedTuple):
+    """A run already in the table: its record and variation labels, and whether it survived
+    (status 'ok'; a collapse, a solver failure or an error did not)."""
+
+    record: str
+    variation: str
+    survived: bool
+
+
 def stored_runs(out):
-    """{run_id: (record, variation, did-not-survive)} of the runs already stored in ``out``."""
+    """{run_id: :class:`StoredRun`} of the runs already stored in ``out``."""
     df = load_table(out, columns=["run_id", "record", "variation", "status"])
-    return {rid: (rec, v, st != "ok")
+    return {rid: StoredRun(rec, v, st == "ok")
             for rid, rec, v, st in zip(df["run_id"], df["record"], df["variation"], df["status"])}

@@ -59,17 +59,23 @@ def table_text(summary):
                      for r in cells)
 
 
-def verdict_text(table, summary, inputs, smt, note, where):
-    """The whole verdict: counts of ``table`` (the stored runs), the P695 inputs, the table of
-    ``summary`` (collapse_summary.csv) and where the report is."""
+def verdict_text(table, summary, inputs, basis, where):
+    """The whole verdict: counts of ``table`` (the stored runs), the P695 inputs and S_MT of
+    the :class:`femoat.suite.p695_inputs.MarginBasis` ``basis`` (or why there is no margin),
+    the table of ``summary`` (collapse_summary.csv) and where the report is."""
     c = counts(table)
     lines = [f"femoat suite: {where}: {c['runs']} runs stored, {c['collapses']} collapsed, "
-             f"{c['solver_failures']} solver failures, {c['errors']} errors",
-             "FEMA P695 inputs:"] + [f"  {x}" for x in inputs.statements()]
-    lines.append(f"  S_MT = {smt:.4g} g" + (f"; {note}" if note else "") if smt is not None
-                 else f"  no margin: {note}")
-    lines += ["", table_text(summary), "",
-              "verdict: 'pass' ACMR >= ACMR10% (a variation judged as a performance group of "
-              "one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
-              "archetype; '>=' marks a lower bound (fewer than half of the records collapsed)"]
+             f"{c['solver_failures']} solver failures, {c['errors']} errors"]
+    if basis.smt is None:
+        lines.append(f"no FEMA P695 margin: {basis.note}")
+        legend = ("verdict: 'no margin': no S_MT, so no CMR, ACMR or pass/fail; '>=' marks a "
+                  "lower bound of S_CT (fewer than half of the records collapsed)")
+    else:
+        lines += ["FEMA P695 inputs:"] + [f"  {x}" for x in inputs.statements()]
+        lines.append(f"  S_MT = {basis.smt:.4g} g" + (f"; {basis.note}" if basis.note else ""))
+        legend = ("verdict: 'pass' ACMR >= ACMR10% (a variation judged as a performance group "
+                  "of one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
+                  "archetype; '>=' marks a lower bound (fewer than half of the records "
+                  "collapsed)")
+    lines += ["", table_text(summary), "", legend]
     return "\n".join(lines) + "\n"
