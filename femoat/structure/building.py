@@ -42,15 +42,6 @@ def initial_stiffness(material):
                      "(use Elastic, Bilinear or IMKBilinear).")
 
 
-def yield_drift(material):
-    """Yield deformation [in] of a story material (None for an elastic story)."""
-    if isinstance(material, Bilinear):
-        return material.Fy / material.k0
-    if isinstance(material, IMKBilinear):
-        return material.My / material.K0
-    return None
-
-
 @dataclass(frozen=True)
 class Building:
     """A base-isolated shear building.
