@@ -453,10 +453,10 @@ def _budget_message(t, duration, cap, integ):
     return (
         f"The recorded histories reached Integrator(record_budget={integ.record_budget:g}) "
         f"bytes ({cap} samples) at t = {t:.6g} s of {duration:.6g} s: the run was ended there "
-        "rather than exhausting the memory. The steps have become very small (a structure "
-        "running away without reaching a runaway bound, or contact chattering?); record "
-        "fewer channels or Integrator(record_every=...) for a long run, or raise record_budget "
-        "if the machine has the memory."
+        "rather than exhausting the memory. The run needs more samples than that (very small "
+        "steps: contact chattering, a structure running away below the runaway bounds? or a "
+        "long duration): record fewer channels or Integrator(record_every=...), or raise "
+        "record_budget if the machine has the memory."
     )
 
 
