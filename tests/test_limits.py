@@ -197,3 +197,28 @@ def test_the_record_budget_ends_a_long_run_with_a_named_error():
     assert issubclass(RecordBudgetError, SolverError)  # a suite counts it as a solver failure
     with pytest.raises(ValueError, match="record_budget = 1000"):
         Integrator(record_budget=1000)
+
+
+def test_femoat_run_prints_the_runaway(tmp_path, capsys):
+    # the headline suite's building (IMK stories, P-Delta) under FEMA P695 far-field 5a at
+    # 1.2 g, no [collapse] table: the run ends where story 1 has drifted by its height, 39 in
+    # (t = 20.78 s, tests/test_stress.py), and the command says so
+    import json
+
+    from femoat.cli import main
+
+    scen = tmp_path / "s.toml"
+    scen.write_text(
+        '[building]\nstory_model = "imk"\np_delta = true\n'
+        '[building.story]\ntheta_p = 1.0\ntheta_pc = 3.0\nres = 0.4\n'
+        '[motion]\nsource = "fema"\nrecord_id = 5\ncomponent = "a"\npga = 1.2\n'
+        f'[output]\nfolder = "{(tmp_path / "out").as_posix()}"\nfigures = false\n')
+    assert main(["run", str(scen)]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("runaway "))
+    assert line.split(maxsplit=1)[1] == ("ended at t = 20.7756 s: story1 deformed beyond 39 in "
+                                         "(a drift of 1 x the story height)")
+    assert main(["run", str(scen), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["runaway"]["element"] == "story1" and "collapse" not in out
+    assert out["runaway"]["time"] == pytest.approx(20.7756, abs=1e-4)
+    assert out["units"]["runaway"] == "time in s, bound in in"
