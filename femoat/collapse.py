@@ -31,8 +31,6 @@ import numpy as np
 from femoat.integration.limits import Limit
 from femoat.structure.roles import ISOLATOR, STORY
 
-CRITERIA = ("drift", "isolator", "wall_displacement", "wall_force")
-"""The built-in criteria, in the order of the summary (and of a suite table's columns)."""
 RUNAWAY_DRIFT = 1.0
 """Drift ratio [-] beyond which a run always ends (a story displaced by its own height)."""
 RUNAWAY_ISOLATOR = 10.0
@@ -96,6 +94,12 @@ class WallForce:
     def limits(self, model, packed):
         return [Limit("contact_force", c, self.bound, criterion=self.name)
                 for c in range(packed.c_code.size)]
+
+
+BUILT_IN = (DriftRatio, IsolatorCapacity, WallDisplacement, WallForce)
+CRITERIA = tuple(c.name for c in BUILT_IN)
+"""The built-in criteria's names, in the order of the summary (and of a suite table's
+columns): drift, isolator, wall_displacement, wall_force."""
 
 
 @dataclass(frozen=True)
@@ -191,10 +195,10 @@ def runaway_limits(model, packed):
     for e, role in enumerate(packed.el_roles):
         if role.kind == STORY:
             rows.append(Limit("element_deformation", e, RUNAWAY_DRIFT * b.heights[role.story - 1],
-                              runaway=True, criterion="drift"))
+                              runaway=True, criterion=DriftRatio.name))
         elif role.kind == ISOLATOR and math.isfinite(b.isolator_capacity):
             rows.append(Limit("element_deformation", e, RUNAWAY_ISOLATOR * b.isolator_capacity,
-                              runaway=True, criterion="isolator"))
+                              runaway=True, criterion=IsolatorCapacity.name))
     return rows
 
 
@@ -212,8 +216,8 @@ def collapse_summary(limits, limit_times, stopped, names=CRITERIA):
     return out
 
 
-_RUNAWAY_REASON = {"drift": f"a drift of {RUNAWAY_DRIFT:g} x the story height",
-                   "isolator": f"{RUNAWAY_ISOLATOR:g} x the isolator capacity"}
+_RUNAWAY_REASON = {DriftRatio.name: f"a drift of {RUNAWAY_DRIFT:g} x the story height",
+                   IsolatorCapacity.name: f"{RUNAWAY_ISOLATOR:g} x the isolator capacity"}
 
 
 def runaway_summary(limits, limit_times, packed):

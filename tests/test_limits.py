@@ -182,6 +182,24 @@ def test_a_buckling_story_without_criteria_ends_at_the_runaway_bound_at_the_clos
     assert 1.0 < r.peaks["peak_drift_ratio"][0] < 1.001
 
 
+def test_an_isolator_past_ten_times_its_capacity_ends_the_run():
+    # a bare base mat on a spring of zero stiffness, sent off at 90 in/s: u = 90·t exactly (no
+    # force). 10 × the 7 in capacity = 70 in is passed at t = 0.778 s, so the run ends at the
+    # first step end after it: the record's sample at 0.78 s (steps never cross a sample)
+    b = Building(floor_weights=(), stories=(), isolator=Elastic(k=0.0), isolator_capacity=7.0)
+    quiet = GroundMotion(np.zeros(301), 0.01, name="quiet")
+    r = run(PoundingModel(b, ()), quiet, duration=3.0, v0=np.array([90.0]))
+    assert r.runaway == {"time": pytest.approx(0.78, abs=1e-12), "element": "isolator",
+                         "bound": 70.0, "reason": "10 x the isolator capacity"}
+    assert r.displacement[-1, 0] == pytest.approx(70.2, rel=1e-12)
+    # with the isolator criterion too, the criterion's time is recorded and the run still
+    # ends at the runaway bound (7 in at t = 0.0778 s: the sample at 0.08 s)
+    kept = run(PoundingModel(b, ()), quiet, duration=3.0, v0=np.array([90.0]),
+               collapse=CollapseCriteria(drift_ratio=None, stop=False))
+    assert kept.collapse["isolator"] == pytest.approx(0.08, abs=1e-12)
+    assert kept.collapse["stopped"] and kept.runaway["time"] == r.runaway["time"]
+
+
 def test_the_record_budget_ends_a_long_run_with_a_named_error():
     # the paper model records 274 bytes a sample (t, a_g, u, v, a of 6 DOFs, 4 elements' force
     # and deformation, 2 contacts' force, indentation, rate [8 bytes each] and flags [1 byte]):
