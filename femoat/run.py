@@ -3,7 +3,12 @@
 import functools
 import math
 
-from femoat.collapse import CollapseCriteria, collapse_summary, runaway_limits, runaway_summary
+from femoat.collapse import (
+    CollapseCriteria,
+    collapse_summary,
+    runaway_limits,
+    runaway_summary,
+)
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.results import RunResult

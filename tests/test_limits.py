@@ -24,7 +24,6 @@ from femoat.structure.pounding import PoundingModel
 from femoat.structure.roles import ISOLATOR, STORY, Role, role_of
 from femoat.units import G
 
-
 # ---- criteria defined here, on quantities the kernel already has ------------------------------
 
 @dataclass(frozen=True)
@@ -240,3 +239,18 @@ def test_femoat_run_prints_the_runaway(tmp_path, capsys):
     assert out["runaway"]["element"] == "story1" and "collapse" not in out
     assert out["runaway"]["time"] == pytest.approx(20.7756, abs=1e-4)
     assert out["units"]["runaway"] == "time in s, bound in in"
+
+
+def test_femoat_run_reports_an_outgrown_record_budget_in_a_sentence(tmp_path, capsys):
+    # the paper run records ~6000 samples; a budget of 1e6 bytes holds 3649 of them (274 bytes
+    # each, test_the_record_budget_ends_a_long_run_with_a_named_error)
+    from femoat.cli import main
+
+    scen = tmp_path / "s.toml"
+    scen.write_text('[motion]\nsource = "erzincan"\n[solver]\nrecord_budget = 1e6\n'
+                    f'[output]\nfolder = "{(tmp_path / "out").as_posix()}"\nfigures = false\n')
+    assert main(["run", str(scen)]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("femoat run: error: The recorded histories reached "
+                          "Integrator(record_budget=1e+06) bytes (3649 samples)")
+    assert "Traceback" not in err and not (tmp_path / "out" / "run.npz").exists()
