@@ -19,6 +19,7 @@ from femoat.dense_peaks import (
     parabolic_peak,
     quintic_accel_abs_max,
 )
+from femoat.structure.roles import STORY, role_of
 from femoat.units import G
 
 ARRAY_UNITS = {
@@ -64,9 +65,8 @@ class RunResult:
             wall_cols.append(dict(cols=cols, phi=[-packed.c_B[c, i] for i in cols],
                                   k=[packed.K[i, i] for i in cols],
                                   c=[packed.C[i, i] for i in cols]))
-        story_c = []
-        for name, e_i, e_j in zip(packed.el_names, packed.el_i, packed.el_j):
-            story_c.append(float(-packed.C[e_i, e_j]) if e_j >= 0 else 0.0)
+        story_c = [float(-packed.C[e_i, e_j]) if e_j >= 0 else 0.0
+                   for e_i, e_j in zip(packed.el_i, packed.el_j)]
         meta = dict(
             dof_names=list(packed.dof_names),
             n_struct=int(packed.n_struct),
@@ -118,7 +118,7 @@ class RunResult:
         self._require("velocity")
         self._require("element_force")
         names = self.meta["element_names"]
-        cols = [i for i, nm in enumerate(names) if nm.startswith("story")]
+        cols = [i for i, nm in enumerate(names) if role_of(nm).kind == STORY]
         if not cols:
             return np.zeros((self.time.size, 0))
         drift_rate = np.diff(self.velocity[:, : self.meta["n_struct"]], axis=1)
@@ -286,6 +286,13 @@ class RunResult:
         time [s] of each (None: not reached), ``collapsed`` and ``stopped``; None when the run
         checked no criteria."""
         return self.meta.get("collapse")
+
+    @property
+    def runaway(self):
+        """None, or the runaway bound that ended the run (:func:`femoat.collapse.runaway_summary`:
+        ``time`` [s], ``element``, ``bound`` [in], ``reason``): the structure had collapsed and
+        its response beyond the bound means nothing, so the run stopped there."""
+        return self.meta.get("runaway")
 
     @property
     def energy(self):

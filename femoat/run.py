@@ -3,7 +3,12 @@
 import functools
 import math
 
-from femoat.collapse import CollapseCriteria, collapse_summary
+from femoat.collapse import (
+    CollapseCriteria,
+    collapse_summary,
+    runaway_limits,
+    runaway_summary,
+)
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.results import RunResult
@@ -46,7 +51,12 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     collapse : CollapseCriteria or None
         Limit states to check after every step (:mod:`femoat.collapse`); their first times are
         in ``result.collapse``, and the run ends at the first one unless ``collapse.stop`` is
-        False. None checks nothing (``result.collapse`` is then None).
+        False. None: no criteria (``result.collapse`` is then None).
+
+    Every run, with criteria or not, ends at the runaway bounds of :mod:`femoat.collapse` (a
+    story drift of one story height, 10 × the isolator capacity): ``result.runaway`` then names
+    the bound and the time. A record that would outgrow ``integrator.record_budget`` raises
+    :class:`~femoat.integration.solve.RecordBudgetError`.
     """
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
@@ -57,18 +67,23 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     integ = integrator or Integrator()
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
+    limits = runaway_limits(model, packed)
     if collapse is not None:
         if not isinstance(collapse, CollapseCriteria):
             raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
-        kw.update(limits=collapse.limits(model, packed), stop_at_limit=collapse.stop)
+        limits = collapse.limits(model, packed) + limits
+        kw.update(stop_at_limit=collapse.stop)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, backend=backend, **kw)
+                 progress=progress, backend=backend, limits=limits, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],
                 wall_damping=[getattr(w.wall, "damping_source", "modal") for w in model.walls])
     result = RunResult.from_history(hist, packed, info)
+    runaway = runaway_summary(limits, hist.limit_times, packed)
+    if runaway is not None:
+        result.meta["runaway"] = runaway
     if collapse is not None:
-        result.meta["collapse"] = collapse_summary(hist.limit_times, packed,
-                                                   hist.stopped_at_limit)
+        result.meta["collapse"] = collapse_summary(limits, hist.limit_times,
+                                                   hist.stopped_at_limit, collapse.names)
     return result

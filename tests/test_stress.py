@@ -2,7 +2,8 @@
 
 On every case a solver either succeeds, with finite results, a closed energy balance and no
 energy created, or raises a clear error (SolverError, ValueError) whose message names what to
-change. Quick variants run in CI; the full grids are marked ``slow``.
+change. Quick variants run in CI; the full grids are marked ``slow``. A building that collapses
+ends at the runaway bound, with the bound and the time named in the result.
 
 Criteria, asserted by :func:`_check_run` and :func:`_check_impact`:
 
@@ -29,13 +30,17 @@ that a fix shows up as XPASS.
 """
 
 import math
+import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import femoat
+from femoat import scenario
 from femoat.contact import make_law
 from femoat.contact.parameters import ContactParameters
-from femoat.ground_motions import GroundMotion
+from femoat.ground_motions import GroundMotion, fema_p695_record
 from femoat.impact import simulate_impact
 from femoat.integration import Integrator, SolverError
 from femoat.paper import paper_model, paper_motion
@@ -420,3 +425,38 @@ def test_paper_runs_at_2g_and_10ms_steps_full(kind, wall, damping):
     for gm in (full, sparse):
         res = run(model, gm, Integrator(max_step=0.01))
         _check_run(res, model.walls[0].law, 1e-4)
+
+
+# ---- a collapsing building without collapse criteria (issue 16) ----------------------------
+
+def _headline_model():
+    """The headline suite's building (IMK stories that cap, P-Delta) and walls: the tables of
+    femoat/suite/headline.toml read as a scenario file's."""
+    d = tomllib.loads((Path(femoat.__file__).parent / "suite" / "headline.toml").read_text())
+    building = scenario.building_from_dict(d["building"])
+    return PoundingModel(building, scenario.walls_from_dict(d["walls"], Path("."),
+                                                            building.base_weight / G))
+
+
+@pytest.mark.parametrize("method", ["dp5", "newmark"])
+def test_collapsing_building_without_criteria_ends_at_the_runaway_bound(method):
+    # FEMA P695 far-field 5a (99.9 s) at PGA 1.2 g, no collapse criteria: story 1 passes its
+    # capping point and P-Delta (−23/39 kip/in) pulls it over. Before issue 16 the run went on
+    # (drift ratio 6e11 at t = 36 s, steps of 1e-7 s, 3.2 million of them) until its record
+    # took 24 GB. Every run now ends at the runaway bound, a drift of one story height (39 in):
+    # measured at t = 20.78 s after 8236 (dp5) and 29566 (Newmark) steps, 0.04-0.1 s of CPU.
+    model = _headline_model()
+    gm = fema_p695_record("farfield", 5, "a").scaled_to_pga(1.2)
+    # a record budget of 50 MB: were the bound ever missed, the run would end here with a
+    # RecordBudgetError rather than take the machine's memory
+    res = run(model, gm, Integrator(method=method, record_budget=5e7))
+    assert res.collapse is None
+    end = res.runaway
+    assert end["element"] == "story1" and end["bound"] == 39.0 and "story height" in end["reason"]
+    assert end["time"] == res.time[-1] == res.meta["stats"]["t_reached"] < gm.duration
+    assert res.meta["stats"]["steps"] < 100_000
+    # the peaks are those of a story just past one height, not of a run that went on
+    ratios = res.peaks["peak_drift_ratio"]
+    assert 1.0 < ratios[0] < 1.01 and max(ratios[1:]) < 0.1
+    assert res.peaks["peak_base_displacement"] < 2 * model.building.isolator_capacity
+    _check_run(res, model.walls[0].law, 1e-5)

@@ -1,6 +1,7 @@
 """``femoat run scenario.toml``: one building run described by a scenario file."""
 
 import json
+import sys
 from pathlib import Path
 
 
@@ -27,7 +28,8 @@ UNITS = (("peak_impact_force", "kip"), ("impacts_", "-"), ("peak_base_displaceme
          ("peak_drift", "in"), ("peak_floor_acceleration", "g"),
          ("peak_base_acceleration", "g"), ("energy_residual", "- (relative)"),
          ("cpu_seconds", "s"), ("compile_seconds", "s"), ("steps", "-"),
-         ("collapse", "s (time each criterion is first reached)"))
+         ("collapse", "s (time each criterion is first reached)"),
+         ("runaway", "time in s, bound in in"))
 
 
 def unit_of(key):
@@ -49,6 +51,8 @@ def _fmt(value):
 
 
 def run(args):
+    from femoat.collapse import describe_runaway
+    from femoat.integration.solve import SolverError
     from femoat.run import run as run_model
     from femoat.scenario import load_scenario
 
@@ -57,8 +61,12 @@ def run(args):
     from femoat.warmup import warm_up
 
     startup = warm_up()  # compile / load the kernels outside the run's timed loop
-    result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time,
-                       collapse=sc.collapse)
+    try:
+        result = run_model(sc.model, sc.motion, sc.integrator, extra_time=sc.extra_time,
+                           collapse=sc.collapse)
+    except SolverError as exc:  # the run could not finish: its sentence, not a traceback
+        print(f"femoat run: error: {exc}", file=sys.stderr)
+        return 1
     result.meta["compile_seconds"] = startup
     result.save(out / "run.npz")
     from femoat.report import write_outputs
@@ -72,13 +80,18 @@ def run(args):
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:
         summary["collapse"] = result.collapse
+    if result.runaway is not None:
+        summary["runaway"] = result.runaway
     written = [out / "run.npz", *paths]
     if args.json:
         print(json.dumps({**summary, "units": {k: unit_of(k) for k in summary},
                           "written": [str(p) for p in written]}))
     else:
         for k, v in summary.items():
-            print(f"{k:28s} {_fmt(v):>12s}  [{unit_of(k)}]")
+            if k == "runaway":  # the run ended early: say so in a sentence
+                print(f"{k:28s} {describe_runaway(v)}")
+            else:
+                print(f"{k:28s} {_fmt(v):>12s}  [{unit_of(k)}]")
         for p in written:
             print(f"wrote {p}")
     from femoat.commands.paper import _compile_ahead_of_time

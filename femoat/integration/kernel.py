@@ -62,6 +62,11 @@ from femoat.integration.forces import (  # noqa: E402, F401  (ground_accel, inte
     internal_force,
 )
 from femoat.integration import explicit  # noqa: E402
+from femoat.integration.limits import (  # noqa: E402
+    CRITERION_EXCEEDED,
+    RUNAWAY_EXCEEDED,
+    check_limits,
+)
 from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: E402, F401
 from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
 
@@ -81,17 +86,14 @@ from femoat.integration.options import (  # noqa: E402, F401  (the option slots,
     F_NTOL,
     F_RTOL,
     F_TEND,
-    I_LIMITS,
     I_MAXIT,
     I_METHOD,
     I_N_COUPLED,
     I_N_EXPLICIT,
     I_N_STRUCT,
     I_RECORD_EVERY,
+    I_STOP_AT_LIMIT,
     LIMIT_REACHED,
-    LIMITS_OFF,
-    LIMITS_RECORD,
-    LIMITS_STOP,
     METHOD_DP5,
     METHOD_NEWMARK,
     N_ENERGY,
@@ -243,42 +245,6 @@ def _crossing(d0, dd0, d1, dd1, h):
             return th_new
         th = th_new
     return th
-
-
-@njit(cache=True)
-def _check_bound(x, j, t, limits, first, hit):
-    """``hit`` raised to 1 if x exceeds criterion j (its first time recorded), to 2 if it
-    exceeds runaway bound j."""
-    if x > limits[0, j]:
-        hit = max(hit, 1)
-        if first[j] < 0.0:
-            first[j] = t
-    if x > limits[1, j]:
-        hit = 2
-    return hit
-
-
-@njit(cache=True)
-def _check_limits(t, u, el_d, c_f, c_B, n_struct, limits, first):
-    """Record the first time each limit is exceeded; 1 when a limit of row 0 is exceeded now,
-    2 when one of row 1 (runaway bounds: the run cannot mean anything beyond them), else 0.
-
-    Each row of ``limits`` holds, per element, a bound on |deformation| [in], then per contact
-    a bound on the wall's displacement at the impact point [in], then per contact a bound on the
-    contact force [kip] (math.inf: none); ``first`` the time each bound of row 0 was first
-    exceeded (−1: not yet).
-    """
-    nel, ncon = el_d.size, c_f.size
-    hit = 0
-    for e in range(nel):
-        hit = _check_bound(abs(el_d[e]), e, t, limits, first, hit)
-    for c in range(ncon):
-        w = 0.0
-        for i in range(n_struct, u.size):
-            w -= c_B[c, i] * u[i]
-        hit = _check_bound(abs(w), nel + c, t, limits, first, hit)
-        hit = _check_bound(c_f[c], nel + ncon + c, t, limits, first, hit)
-    return hit
 
 
 # ---- the step controller ------------------------------------------------------------------
@@ -840,13 +806,12 @@ def _declare_event(c, t, hh, h, model, state, settings, work, rec):
 
 @njit(cache=True, inline="always")
 def _limit_reached(t, model, state, settings):
-    """Check the limit states after an accepted step: does the run end here?"""
-    limit_mode = settings.iopt[I_LIMITS]
-    if limit_mode == LIMITS_OFF:
-        return False
-    hit = _check_limits(t, state.u, state.el_d, state.c_f, model.c_B, settings.iopt[I_N_STRUCT],
-                        settings.limits, state.first_exceed)
-    return hit == 2 or (hit == 1 and limit_mode == LIMITS_STOP)
+    """Check the limit states (:mod:`femoat.integration.limits`) after an accepted step: does
+    the run end here?"""
+    hit = check_limits(t, settings.iopt[I_N_STRUCT], model, state, settings.limits,
+                       state.first_exceed)
+    return hit == RUNAWAY_EXCEEDED or (hit == CRITERION_EXCEEDED
+                                       and settings.iopt[I_STOP_AT_LIMIT] == 1)
 
 
 @njit(cache=True, inline="always")

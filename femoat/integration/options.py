@@ -9,10 +9,11 @@ F_BETA, F_GAMMA, F_ALPHA, F_RTOL, F_HMAX, F_HMIN, F_NTOL, F_TEND, F_DTREC, F_HCO
     F_GAPTOL = range(11)
 N_FOPT = 11
 # Integer options (iopt)
-I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_LIMITS, I_N_STRUCT, I_METHOD, I_N_EXPLICIT = range(7)
+I_MAXIT, I_RECORD_EVERY, I_N_COUPLED, I_STOP_AT_LIMIT, I_N_STRUCT, I_METHOD, \
+    I_N_EXPLICIT = range(7)
 N_IOPT = 7
-# I_LIMITS: what the limit states (collapse criteria) do
-LIMITS_OFF, LIMITS_RECORD, LIMITS_STOP = 0, 1, 2
+# I_STOP_AT_LIMIT: 1 ends the run at the first criterion row exceeded, 0 only records its time
+# (a runaway row always ends it: femoat.integration.limits)
 # I_METHOD: the method of the open phase (the contact phase is always Newmark/HHT)
 METHOD_NEWMARK, METHOD_DP5 = 0, 1
 # Stats (stats), integer

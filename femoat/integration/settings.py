@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 METHODS = ("newmark", "dp5")
 """The integration methods of the open phase (see :class:`Integrator`)."""
+MIN_RECORD_BUDGET = 1e6
+"""The smallest ``Integrator.record_budget`` [bytes] (a few thousand samples)."""
 DEFAULT_RTOL = {"newmark": 1e-5, "dp5": 1e-5}
 """Each method's default rtol: every peak within 1e-3 of a converged run
 (``benchmarks/peak_accuracy.py`` measures it)."""
@@ -56,6 +58,11 @@ class Integrator:
         The first step after a gap closes is (local contact half-period)/contact_steps.
     record_every : int
         Keep every k-th step of the open phase in the output (contact steps are always kept).
+    record_budget : float
+        Largest memory the recorded histories may take [bytes] (default 2e9, 2 GB): a run whose
+        record would grow beyond it ends with a ``RecordBudgetError`` naming the time reached,
+        instead of exhausting the machine. (Growing the record briefly holds the old and the
+        new buffers: up to 1.5 × this.)
     """
 
     method: str = "dp5"
@@ -67,6 +74,7 @@ class Integrator:
     max_newton: int = 30
     contact_steps: float = 20.0
     record_every: int = 1
+    record_budget: float = 2e9
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -90,6 +98,10 @@ class Integrator:
             raise ValueError(f"contact_steps = {self.contact_steps!r} must be >= 2.")
         if int(self.record_every) < 1:
             raise ValueError(f"record_every = {self.record_every!r} must be >= 1.")
+        if not (isinstance(self.record_budget, (int, float)) and math.isfinite(self.record_budget)
+                and self.record_budget >= MIN_RECORD_BUDGET):
+            raise ValueError(f"record_budget = {self.record_budget!r} must be a memory of at "
+                             f"least {MIN_RECORD_BUDGET:g} bytes (default 2e9, 2 GB).")
 
     @property
     def beta(self):

@@ -9,14 +9,20 @@ import numpy as np
 from femoat.integration import explicit as ex
 from femoat.integration import kernel as kn
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
+from femoat.integration.limits import pack_limits
 from femoat.integration.peaks import size as pk_size
 from femoat.integration.settings import Integrator
-from femoat.structure.building import yield_drift
+from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
 
 class SolverError(RuntimeError):
     """The time stepping could not continue; the message says where and what to change."""
+
+
+class RecordBudgetError(SolverError):
+    """The recorded histories would outgrow ``Integrator.record_budget``: the run was ended
+    before it could exhaust the machine's memory."""
 
 
 @dataclass
@@ -37,8 +43,9 @@ class RawHistory:
     stats: dict
     energy: dict
     limit_times: np.ndarray
-    """First time [s] each limit of ``limits`` was exceeded (NaN: never)."""
+    """First time [s] each row of ``limits`` was exceeded (NaN: never), in their order."""
     stopped_at_limit: bool
+    """The run ended at a limit: a runaway row, or a criterion row with ``stop_at_limit``."""
     peaks: np.ndarray
     """The running peaks of the continuous solution (:mod:`femoat.integration.peaks`)."""
 
@@ -79,14 +86,21 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     backend : str
         "auto" (the ahead-of-time compiled kernels of :mod:`femoat.aot` when built, else numba's
         JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
-    limits : array (2, m) or None
-        Limit states checked after every step: per element a bound on |deformation| [in], then
-        per contact a bound on the wall displacement at the impact point [in], then per contact
-        a bound on the contact force [kip] (math.inf: none); row 0 the criteria whose first
-        times are recorded, row 1 runaway bounds that always end the run. None checks nothing.
+    limits : sequence of Limit or None
+        Limit states checked after every accepted step (:mod:`femoat.integration.limits`):
+        the first time each row is exceeded is recorded, and a runaway row ends the run. None
+        checks nothing (:func:`femoat.run.run` always gives the runaway bounds of
+        :mod:`femoat.collapse`).
     stop_at_limit : bool
-        End the run at the first step beyond a bound of row 0 (``RawHistory.stopped_at_limit``
-        is then True, as after a runaway bound).
+        End the run at the first step beyond a criterion row too (``RawHistory.stopped_at_limit``
+        is then True, as after a runaway row).
+
+    Raises
+    ------
+    SolverError
+        The stepping cannot continue (the message says where and what to change);
+        :class:`RecordBudgetError` when the recorded histories would outgrow
+        ``integrator.record_budget``.
     """
     kern, backend = kernels(backend)
     packed = _canonical(packed)
@@ -125,19 +139,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     fopt[kn.F_HCONTACT] = h_contact
     fopt[kn.F_GAPTOL] = 1e-3 * integ.rtol * d_me
     nel, ncon = packed.el_code.size, packed.c_code.size
-    if limits is None:
-        limit_mode = kn.LIMITS_OFF
-        limits = np.full((2, nel + 2 * ncon), np.inf)
-    else:
-        limits = np.array(limits, dtype=float)
-        if limits.shape != (2, nel + 2 * ncon) or np.any(np.isnan(limits)) or np.any(limits <= 0):
-            raise ValueError(f"limits must hold 2 x {nel + 2 * ncon} positive bounds (elements, "
-                             "wall displacements, contact forces; inf for none).")
-        limit_mode = kn.LIMITS_STOP if stop_at_limit else kn.LIMITS_RECORD
+    limits = pack_limits(() if limits is None else tuple(limits), packed)
     n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
     iopt = np.zeros(kn.N_IOPT, dtype=np.int64)
     iopt[kn.I_MAXIT], iopt[kn.I_RECORD_EVERY] = integ.max_newton, integ.record_every
-    iopt[kn.I_N_COUPLED], iopt[kn.I_LIMITS] = n_explicit if lazy else n, limit_mode
+    iopt[kn.I_N_COUPLED] = n_explicit if lazy else n
+    iopt[kn.I_STOP_AT_LIMIT] = 1 if stop_at_limit else 0
     iopt[kn.I_N_STRUCT], iopt[kn.I_N_EXPLICIT] = packed.n_struct, n_explicit
     iopt[kn.I_METHOD] = METHOD_CODES[integ.method]
 
@@ -152,7 +159,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                   c_f=np.zeros(ncon), c_d=np.zeros(ncon), c_W=np.zeros(ncon),
                   c_closed=np.zeros(ncon, dtype=np.int64), energy=np.zeros(kn.N_ENERGY),
                   stats=np.zeros(kn.N_STATS, dtype=np.int64),
-                  first_exceed=np.full(limits.shape[1], -1.0),
+                  first_exceed=np.full(limits.shape[0], -1.0),
                   pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
                   pk_n=np.zeros(1, dtype=np.int64))
     settings = Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
@@ -186,10 +193,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     chan = set(channels) | {"displacement", "contacts"}
     widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
                   el=nel if "elements" in chan else 0, c=ncon)
-    # room for every record sample plus contact steps (grown by doubling when short)
-    # (the fifth-order open phase takes 1-1.6 steps per sample, turning points included)
+    # room for every record sample plus contact steps (grown by doubling when short, up to
+    # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
+    # points included
     per_sample = 2.0 if integ.method == "dp5" else 1.2
-    cap = int(per_sample * duration / dt_rec / integ.record_every) + 1024
+    max_cap = int(integ.record_budget // _row_bytes(widths))
+    cap = min(int(per_sample * duration / dt_rec / integ.record_every) + 1024, max_cap)
     rec = _recorder(cap, widths)
 
     cpu0 = _time.process_time()
@@ -201,7 +210,9 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     while True:
         status = kern.run_chunk(targets[k], model, state, settings, work, rec)
         if status == kn.BUFFER_FULL:
-            cap *= 2
+            if cap >= max_cap:
+                raise RecordBudgetError(_budget_message(state.t[0], duration, cap, integ))
+            cap = min(2 * cap, max_cap)
             rec = _grow(rec, cap)
             continue
         if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
@@ -282,10 +293,10 @@ def error_scales(packed, pga):
     scale_contact[0] = d_me
     scale_contact[ns:] = d_me
     err_ref = np.full(n, -1, dtype=np.int64)
-    for name, i, j, mat in zip(packed.el_names, packed.el_i, packed.el_j, packed.el_materials):
-        if name.startswith("story") and j >= 0:
+    for role, i, j, mat in zip(packed.el_roles, packed.el_i, packed.el_j, packed.el_materials):
+        if role.kind == STORY and j >= 0:
             err_ref[i] = j
-            drift = yield_drift(mat)
+            drift = mat.yield_deformation
             scale_open[i] = scale_contact[i] = min(gap_scale, drift) if drift else gap_scale
     scale_accel = np.full(n, np.inf)
     scale_accel[:ns] = ACCELERATION_FRACTION * max(pga, ACCELERATION_FLOOR)
@@ -359,6 +370,13 @@ RECORDER_COLUMNS = {"t": None, "u": "u", "v": "v", "a": "a", "ag": None, "ef": "
 its width in ``widths`` (0 when the channel is not requested), None for one value per sample."""
 
 
+def _row_bytes(widths):
+    """Bytes of one recorded sample for the channel ``widths``."""
+    return sum(np.dtype(np.int8 if name == "closed" else np.float64).itemsize
+               * (1 if RECORDER_COLUMNS[name] is None else widths[RECORDER_COLUMNS[name]])
+               for name in Recorder._fields)
+
+
 def _recorder(cap, widths):
     """Empty history buffers for ``cap`` samples."""
     bufs = []
@@ -411,8 +429,8 @@ def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_i
     c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
                       if c_closed[c] else 0.0 for c in range(packed.c_code.size)])
     el_diss = el_W - el_rec
-    iso = [e for e, name in enumerate(packed.el_names) if name == "isolator"]
-    sto = [e for e, name in enumerate(packed.el_names) if name != "isolator"]
+    iso = [e for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
+    sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]
     out = dict(
         initial=e_initial,
         input=float(energy[kn.E_INPUT]),
@@ -431,6 +449,17 @@ def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_i
     return out
 
 
+def _budget_message(t, duration, cap, integ):
+    return (
+        f"The recorded histories reached Integrator(record_budget={integ.record_budget:g}) "
+        f"bytes ({cap} samples) at t = {t:.6g} s of {duration:.6g} s: the run was ended there "
+        "rather than exhausting the memory. The run needs more samples than that (very small "
+        "steps: contact chattering, a structure running away below the runaway bounds? or a "
+        "long duration): record fewer channels or Integrator(record_every=...), or raise "
+        "record_budget if the machine has the memory."
+    )
+
+
 def _failure_message(packed, t, u, v, closed, integ, stalled=False):
     where = ", ".join(f"{packed.c_names[c]} wall in contact" for c in range(closed.size)
                       if closed[c]) or "all gaps open"
@@ -446,8 +475,9 @@ def _failure_message(packed, t, u, v, closed, integ, stalled=False):
             f"The explicit step of the open phase (method 'dp5') gave no finite state at "
             f"t = {t:.6g} s (all gaps open; base displacement {u[0]:.4g} in, velocity "
             f"{v[0]:.4g} in/s) even at the smallest step {integ.min_step:g} s: the building "
-            "runs away (a negative story stiffness without collapse criteria?). Give collapse "
-            "criteria, check the element parameters, or try Integrator(method='newmark')."
+            "runs away faster than the runaway bounds of femoat.collapse end it (a negative "
+            "story stiffness?). Check the element parameters, or try "
+            "Integrator(method='newmark')."
         )
     return (
         f"The solver could not converge at t = {t:.6g} s ({where}; base displacement "

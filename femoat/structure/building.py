@@ -42,15 +42,6 @@ def initial_stiffness(material):
                      "(use Elastic, Bilinear or IMKBilinear).")
 
 
-def yield_drift(material):
-    """Yield deformation [in] of a story material (None for an elastic story)."""
-    if isinstance(material, Bilinear):
-        return material.Fy / material.k0
-    if isinstance(material, IMKBilinear):
-        return material.My / material.K0
-    return None
-
-
 @dataclass(frozen=True)
 class Building:
     """A base-isolated shear building.
@@ -77,7 +68,8 @@ class Building:
         Add each story's geometric stiffness −P_k/h_k, P_k the weight of floors k and above
         [kip] (linear P-Delta; the buckling load of an elastic story is k·h).
     isolator_capacity : float
-        Displacement capacity of the isolator [in] (a collapse criterion, see femoat.collapse).
+        Displacement capacity of the isolator [in]: a collapse criterion, and 10 × it a runaway
+        bound that ends every run (femoat.collapse).
     """
 
     base_weight: float = 10.0

@@ -15,6 +15,7 @@ import numpy as np
 from femoat.contact.kernels import N_HISTORY, N_PARAMS
 from femoat.contact.laws import ContactLaw
 from femoat.structure.building import Building, initial_stiffness
+from femoat.structure.roles import ISOLATOR, STORY, Role
 from femoat.units import G
 from femoat.walls.modal import ModalWall
 from femoat.walls.sdof import SdofWall
@@ -118,9 +119,9 @@ class PoundingModel:
         # nonlinear elements: isolator (base–ground), stories
         elements = []
         if b.isolator is not None:
-            elements.append((0, -1, b.isolator, "isolator"))
+            elements.append((0, -1, b.isolator, Role(ISOLATOR)))
         for k, mat in enumerate(b.stories):
-            elements.append((k + 1, k, mat, f"story{k + 1}"))
+            elements.append((k + 1, k, mat, Role(STORY, k + 1)))
         # walls: modal DOFs and contacts
         contacts = []
         col = n_struct
@@ -144,7 +145,7 @@ class PoundingModel:
             el_code=np.array([e[2].code for e in elements], dtype=np.int64),
             el_P=_stack([e[2].params() for e in elements]),
             el_S=_stack([e[2].initial_state() for e in elements]),
-            el_names=[e[3] for e in elements],
+            el_roles=tuple(e[3] for e in elements),
             el_materials=[e[2] for e in elements],
             c_B=np.array([c[0] for c in contacts]).reshape(len(contacts), n),
             c_gap=np.array([c[1].gap for c in contacts], dtype=float),
@@ -182,7 +183,8 @@ class PackedModel:
     el_code: np.ndarray
     el_P: np.ndarray
     el_S: np.ndarray
-    el_names: list
+    el_roles: tuple
+    """Each element's :class:`~femoat.structure.roles.Role` (isolator, story k)."""
     el_materials: list
     c_B: np.ndarray
     c_gap: np.ndarray
@@ -195,3 +197,8 @@ class PackedModel:
     @property
     def n(self):
         return self.M.shape[0]
+
+    @property
+    def el_names(self):
+        """Each element's name (``"isolator"``, ``"story1"``, ...), from its role."""
+        return [role.name for role in self.el_roles]

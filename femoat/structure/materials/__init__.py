@@ -2,7 +2,9 @@
 
 Each material is a frozen dataclass (parameters with units, validated) that packs a float64
 params array ``p`` and a virgin committed state ``s`` for the compiled kernels in
-:mod:`femoat.structure.materials.kernels`, selected by an integer code:
+:mod:`femoat.structure.materials.kernels`, selected by an integer code, and answers its own
+questions: ``yield_deformation`` [in] (None if it never yields; the solver scales a story's
+error by it). The codes and params:
 
 * ``ELASTIC`` (0), :class:`Elastic`: p = [k]
 * ``BILINEAR`` (1), :class:`Bilinear`: p = [k0, Fy, b]

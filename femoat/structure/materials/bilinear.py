@@ -75,6 +75,11 @@ class Bilinear:
         """Yield deformation Fy/k0 [in]."""
         return self.Fy / self.k0
 
+    @property
+    def yield_deformation(self) -> float:
+        """Deformation at first yield [in]: u_y = Fy/k0."""
+        return self.uy
+
     def params(self) -> np.ndarray:
         return np.array([self.k0, self.Fy, self.b], dtype=np.float64)
 

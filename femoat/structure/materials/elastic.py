@@ -48,6 +48,11 @@ class Elastic:
 
     code = ELASTIC
 
+    @property
+    def yield_deformation(self) -> None:
+        """None: an elastic spring never yields."""
+        return None
+
     def params(self) -> np.ndarray:
         return np.array([self.k], dtype=np.float64)
 

@@ -132,6 +132,11 @@ class FrictionPendulum:
     code = FRICTION_PENDULUM
 
     @property
+    def yield_deformation(self) -> float:
+        """Deformation at which the bearing starts to slide [in]: the friction spring's u_y."""
+        return self.u_y
+
+    @property
     def mu_slow(self) -> float:
         """Friction coefficient at zero velocity [-]."""
         return self.mu

@@ -320,6 +320,11 @@ class IMKBilinear:
         """Yield deformation My/K0 [in]."""
         return self.My / self.K0
 
+    @property
+    def yield_deformation(self) -> float:
+        """Deformation at first yield [in]: u_y = My/K0."""
+        return self.uy
+
     def params(self) -> np.ndarray:
         return np.array(
             [self.K0, self.alpha_s, self.My, self.Lambda, self.c, self.theta_p, self.theta_pc,
