@@ -39,10 +39,12 @@ from femoat.contact.hertz import K_H, hertz_gradient  # noqa: E402
 from femoat.contact.history import H_D_LAST, H_DMAX, H_F_LAST, H_V0, N_HISTORY  # noqa: E402
 from femoat.contact.laws import FAMILIES  # noqa: E402
 
-if _dispatch.FAMILIES != tuple(f.name for f in FAMILIES):
+if (_dispatch.FAMILIES, N_PARAMS) != (tuple(f.name for f in FAMILIES),
+                                      max(f.n_params for f in FAMILIES)):
     raise ImportError(
         f"femoat/contact/_dispatch.py dispatches the kernel families {_dispatch.FAMILIES}, the "
-        f"registry has {tuple(f.name for f in FAMILIES)}: run `python -m femoat.contact.generate`."
+        f"registry has {tuple(f.name for f in FAMILIES)} (or other params widths): run "
+        "`python -m femoat.contact.generate`."
     )
 
 __all__ = ["N_HISTORY", "N_PARAMS", "contact_closure", "contact_commit", "contact_force",
