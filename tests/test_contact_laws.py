@@ -5,7 +5,15 @@ import math
 import numpy as np
 import pytest
 
-from femoat.contact import ContactParameters, make_law
+from femoat.contact import (
+    ContactParameters,
+    Hertzdamp,
+    Jankowski,
+    KelvinVoigt,
+    Linear,
+    Muthukumar,
+    make_law,
+)
 from femoat.contact.kernels import N_HISTORY, contact_force, contact_stored_energy
 from femoat.units import G
 from femoat.walls import wall_preset
@@ -103,7 +111,7 @@ def test_bilinear_loop_area_and_closure(wall):
     up, f_up, down, f_down = _bilinear_cycle(law, pr.delta_me)
     area = np.trapezoid(f_up, up) + np.trapezoid(f_down, down)
     # Muthukumar & DesRoches: the loop dissipates (1 − e²)·0.4·k_eff·δ_me² at δ_max = δ_me
-    # (area of the parallelogram (k1 − k2)·δ_y·(δ_me − δ_y), see femoat.contact.damping).
+    # (area of the parallelogram (k1 − k2)·δ_y·(δ_me − δ_y), see femoat.contact.muthukumar).
     expected = (1 - pr.e**2) * 0.4 * pr.k_eff * pr.delta_me**2
     assert area == pytest.approx(expected, rel=1e-6)
     # The loop closes at δ = 0 with zero force, and the unloading path is continuous (the
@@ -178,8 +186,36 @@ def test_unknown_law_and_preset_and_impossible_bilinear():
     # k2 = (1 − 0.4(1 − 0.05²)/(1 − 0.7))·k_eff < 0: the bilinear law cannot exist
     with pytest.raises(ValueError, match="non-positive second stiffness"):
         make_law("M", ContactParameters(6700.0, 1e-3, 0.025, 0.05, 0.7))
+    # ...nor a tension-free Kelvin-Voigt law below e = exp(−2) = 0.135: both raise when built
     with pytest.raises(ValueError, match="too small for the Kelvin-Voigt law"):
-        make_law("V", ContactParameters(6700.0, 1e-3, 0.025, 0.1)).packed()
+        make_law("V", ContactParameters(6700.0, 1e-3, 0.025, 0.1))
+
+
+@pytest.mark.parametrize("cls, args, message", [
+    (Linear, (-1.0,), r"k_eff = -1.0 \[kip/in\]: must be > 0"),
+    (KelvinVoigt, (1000.0, -0.1), r"c_eff = -0.1 \[kip·s/in\]: must be >= 0"),
+    (KelvinVoigt, (1000.0, 0.1, 1), r"allow_tension = 1: must be True or False"),
+    (Jankowski, (6700.0, float("nan"), 1e-3), r"xi_J = nan \[-\]: must be a finite number"),
+    (Hertzdamp, (6700.0, 0.7, 0.0), r"v0_min = 0.0 \[in/s\]: must be > 0"),
+    (Muthukumar, (3000.0, 0.0, 0.0025), r"k2 = 0.0 \[kip/in\]: must be > 0"),
+])
+def test_kernel_parameters_validate_themselves(cls, args, message):
+    with pytest.raises(ValueError, match=message):
+        cls(*args)
+
+
+def test_a_damping_override_is_checked_by_the_law():
+    pr = wall_preset("concrete").contact  # a = 0.1
+    with pytest.raises(ValueError, match=r"damping \(xi_h\) = -0.5 must be a finite number >= 0"):
+        make_law("H", pr, damping=-0.5)
+    # M's loss factor λ: k2 = (1 − λ/(1 − a))·k_eff > 0 needs λ < 1 − a = 0.9
+    with pytest.raises(ValueError, match=r"loss_factor\) = 0.9 must be in \[0, 1 - a\)"):
+        make_law("M", pr, damping=0.9)
+    assert make_law("M", pr, damping=0.89).stiffnesses()[1] > 0
+    with pytest.raises(ValueError, match="allow_tension applies to the law"):
+        make_law("H", pr, allow_tension=True)
+    with pytest.raises(ValueError, match="no loading stiffnesses"):
+        make_law("H", pr).stiffnesses()
 
 
 def test_law_names_are_accepted():

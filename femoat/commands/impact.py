@@ -2,7 +2,7 @@
 
 import json
 
-from femoat.contact.laws import LAW_CODES, make_law
+from femoat.contact.laws import LAW_CODES, LAW_NAMES, make_law
 from femoat.walls.presets import DAMPING_CHOICES, PRESETS, wall_preset
 
 
@@ -17,8 +17,7 @@ def add_parser(sub):
         "restitution and dissipated energy [kip·in].",
     )
     p.add_argument("--law", required=True, choices=list(LAW_CODES),
-                   help="contact law: E linear elastic, V Kelvin-Voigt, J Jankowski, "
-                   "H Hertzdamp, M Muthukumar bilinear")
+                   help="contact law: " + ", ".join(f"{k} {v}" for k, v in LAW_NAMES.items()))
     p.add_argument("--wall", default="concrete", choices=PRESETS,
                    help="wall preset of the paper's Table 3 (default: concrete)")
     p.add_argument("--v0", type=float, default=10.0, help="impact speed [in/s] (default: 10)")
@@ -43,7 +42,7 @@ def run(args):
     preset = wall_preset(args.wall, damping=args.damping)
     law = make_law(args.law, preset.contact, allow_tension=args.allow_tension)
     uncalibrated_e = None
-    if args.calibrate and law.kind != "E":
+    if args.calibrate and law.calibratable:
         uncalibrated_e = achieved_restitution(law, args.v0)
         law = calibrate(law, args.v0)
     wall = None if args.rigid else preset.wall
@@ -53,7 +52,7 @@ def run(args):
         wall=preset.name,
         damping=args.damping if wall is not None else None,
         wall_damping=wall.damping if wall is not None else None,
-        calibrated=bool(args.calibrate and law.kind != "E"),
+        calibrated=bool(args.calibrate and law.calibratable),
         target_restitution=preset.contact.e,
         uncalibrated_restitution_rigid=uncalibrated_e,
         delta_me=law.params.delta_me,

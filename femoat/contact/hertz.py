@@ -1,8 +1,9 @@
 """The Hertz spring k_h·δ^1.5 of the Jankowski and Hertzdamp laws, and its discrete gradient.
 
-Both laws store k_h [kip/in^1.5] at index :data:`K_H` of their params array, so the
-time-stepping variant of the force (:func:`femoat.contact.kernels.step_force`) can replace
-their elastic part without knowing the law.
+Both laws store k_h [kip/in^1.5] at index :data:`K_H` of their params array and declare
+``hertz_spring`` in their :class:`~femoat.contact.spec.KernelFamily`, so the time-stepping
+variant of the force (:func:`femoat.contact.kernels.step_force`) can replace their elastic part
+without knowing the law.
 
 The trapezoidal rule (Newmark average acceleration) conserves the energy of a linear spring
 exactly, but not of the hardening Hertz spring: over a step it does the work ½(f₀ + f₁)·Δδ instead
@@ -25,8 +26,9 @@ K_H = 0
 
 
 @njit(cache=True)
-def hertz_energy(p, d):
-    """Elastic energy 0.4·k_h·δ^2.5 [kip·in] at indentation ``d`` > 0 [in]."""
+def hertz_energy(p, h, d):
+    """Elastic energy 0.4·k_h·δ^2.5 [kip·in] at indentation ``d`` > 0 [in] (the energy kernel
+    of every law built on the Hertz spring)."""
     return 0.4 * p[K_H] * d * d * np.sqrt(d)
 
 

@@ -6,12 +6,12 @@ approaching. Forces are compressive-positive [kip]. Every force kernel returns
 Newton iteration may call it any number of times; :func:`contact_commit` advances the history once
 a step has converged.
 
-Each law lives in its own module with its params layout (``p``, from
-:meth:`femoat.contact.laws.ContactLaw.packed`) and kernels: :mod:`~femoat.contact.linear` (E),
-:mod:`~femoat.contact.kelvin_voigt` (V), :mod:`~femoat.contact.jankowski` (J),
-:mod:`~femoat.contact.hertzdamp` (H), :mod:`~femoat.contact.muthukumar` (M). The history layout
-``h`` is in :mod:`femoat.contact.codes`. Adding a law touches its own module, this dispatcher
-and the registry in :mod:`femoat.contact.laws`.
+A law's ``code`` (:attr:`femoat.contact.laws.ContactLaw.code`) numbers its kernel family; the
+family's kernels and params layout (``p``, from :meth:`~femoat.contact.laws.ContactLaw.packed`)
+live in the law's module, and :mod:`femoat.contact._dispatch`, generated from the registry,
+selects them by that number. The history layout ``h`` is in :mod:`femoat.contact.history`.
+What the family declares (:class:`~femoat.contact.spec.KernelFamily`: a Hertz spring, a force
+that need not vanish at δ = 0⁺) is all the time-stepping variants below ask of it.
 """
 
 from pathlib import Path
@@ -21,45 +21,34 @@ import numpy as np
 from femoat.jit import njit
 from femoat.numba_cache import drop_stale_cache
 
-# the dispatchers below inline the kernels of the sibling modules (numba's cache does not see it)
-drop_stale_cache(__file__, sorted(Path(__file__).resolve().parent.glob("*.py")))
+# the dispatchers inline the kernels of the sibling modules (numba's cache does not see it)
+_HERE = Path(__file__).resolve().parent
+for _compiled in ("kernels.py", "_dispatch.py"):
+    drop_stale_cache(_HERE / _compiled, sorted(_HERE.glob("*.py")))
 
-from femoat.contact import (  # noqa: E402
-    hertzdamp,
-    jankowski,
-    kelvin_voigt,
-    linear,
-    muthukumar,
-)
-from femoat.contact.codes import (  # noqa: E402
-    H_D_LAST,
-    H_DMAX,
-    H_F_LAST,
-    H_V0,
-    HERTZDAMP,
-    JANKOWSKI,
-    KELVIN_VOIGT,
-    LINEAR,
-    MUTHUKUMAR,
-    N_HISTORY,
+from femoat.contact import _dispatch  # noqa: E402
+from femoat.contact._dispatch import (  # noqa: E402
+    N_PARAMS,
+    acts_at_zero,
+    family_commit,
+    family_energy,
+    family_force,
+    hertz_spring,
 )
 from femoat.contact.hertz import K_H, hertz_gradient  # noqa: E402
-from femoat.contact.hertzdamp import hertzdamp_energy, hertzdamp_force  # noqa: E402
-from femoat.contact.jankowski import jankowski_energy, jankowski_force  # noqa: E402
-from femoat.contact.kelvin_voigt import kelvin_voigt_energy, kelvin_voigt_force  # noqa: E402
-from femoat.contact.linear import linear_energy, linear_force  # noqa: E402
-from femoat.contact.muthukumar import (  # noqa: E402
-    muthukumar_commit,
-    muthukumar_energy,
-    muthukumar_force,
-)
+from femoat.contact.history import H_D_LAST, H_DMAX, H_F_LAST, H_V0, N_HISTORY  # noqa: E402
+from femoat.contact.laws import FAMILIES  # noqa: E402
 
-__all__ = ["HERTZDAMP", "JANKOWSKI", "KELVIN_VOIGT", "LINEAR", "MUTHUKUMAR", "N_HISTORY",
-           "N_PARAMS", "contact_closure", "contact_commit", "contact_force",
+if (_dispatch.FAMILIES, N_PARAMS) != (tuple(f.name for f in FAMILIES),
+                                      max(f.n_params for f in FAMILIES)):
+    raise ImportError(
+        f"femoat/contact/_dispatch.py dispatches the kernel families {_dispatch.FAMILIES}, the "
+        f"registry has {tuple(f.name for f in FAMILIES)} (or other params widths): run "
+        "`python -m femoat.contact.generate`."
+    )
+
+__all__ = ["N_HISTORY", "N_PARAMS", "contact_closure", "contact_commit", "contact_force",
            "contact_stored_energy", "recorded_force", "step_commit", "step_force"]
-
-N_PARAMS = max(m.N_PARAMS for m in (linear, kelvin_voigt, jankowski, hertzdamp, muthukumar))
-"""Width of a contact's params row (the longest law's; shorter laws leave the rest zero)."""
 
 
 @njit(cache=True)
@@ -67,17 +56,7 @@ def contact_force(code, p, h, d, v):
     """Force [kip] and tangents (df/dδ [kip/in], df/dδ̇ [kip·s/in]) of law ``code``."""
     if d <= 0.0:
         return 0.0, 0.0, 0.0
-    if code == LINEAR:
-        return linear_force(p, d)
-    if code == KELVIN_VOIGT:
-        return kelvin_voigt_force(p, d, v)
-    if code == JANKOWSKI:
-        return jankowski_force(p, d, v)
-    if code == HERTZDAMP:
-        return hertzdamp_force(p, h, d, v)
-    if code == MUTHUKUMAR:
-        return muthukumar_force(p, h, d)
-    return np.nan, np.nan, np.nan
+    return family_force(code, p, h, d, v)
 
 
 @njit(cache=True)
@@ -88,17 +67,7 @@ def contact_stored_energy(code, p, h, d):
     """
     if d <= 0.0:
         return 0.0
-    if code == LINEAR:
-        return linear_energy(p, d)
-    if code == KELVIN_VOIGT:
-        return kelvin_voigt_energy(p, d)
-    if code == JANKOWSKI:
-        return jankowski_energy(p, d)
-    if code == HERTZDAMP:
-        return hertzdamp_energy(p, d)
-    if code == MUTHUKUMAR:
-        return muthukumar_energy(p, h, d)
-    return np.nan
+    return family_energy(code, p, h, d)
 
 
 @njit(cache=True)
@@ -116,17 +85,10 @@ def contact_closure(h, v):
 @njit(cache=True)
 def contact_commit(code, h, d):
     """Advance the history of law ``code`` after a converged step ending at indentation ``d``."""
-    if code == MUTHUKUMAR:
-        muthukumar_commit(h, d)
+    family_commit(code, h, d)
 
 
 # ---- implicit time stepping -------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _hertzian(code):
-    """Does law ``code`` carry the Hertz spring (its elastic part takes the discrete gradient)?"""
-    return code == JANKOWSKI or code == HERTZDAMP
 
 
 @njit(cache=True)
@@ -136,13 +98,14 @@ def step_force(code, p, h, d, v):
 
     Identical to :func:`contact_force` except: the elastic part k_h·δ^1.5 of the Hertz laws is
     replaced by its discrete gradient (:mod:`femoat.contact.hertz`), and the step that ends a
-    contact (δ₁ ≤ 0, from δ₀ > 0) returns the energy stored at δ₀ too; a Kelvin-Voigt episode
-    still open at δ ≤ 0 acts as at δ = 0⁺ (its dashpot).
+    contact (δ₁ ≤ 0, from δ₀ > 0) returns the energy stored at δ₀ too; an episode still open at
+    δ ≤ 0 of a law whose force need not vanish at δ = 0⁺ (Kelvin-Voigt's dashpot) acts as at
+    δ = 0⁺.
     """
-    if d <= 0.0 and code == KELVIN_VOIGT:
+    if d <= 0.0 and acts_at_zero(code):
         d = 1e-300
     f, kf, cf = contact_force(code, p, h, d, v)
-    if not _hertzian(code):
+    if not hertz_spring(code):
         return f, kf, cf
     if d <= 0.0 and h[H_D_LAST] <= 0.0:
         return f, kf, cf
@@ -162,7 +125,7 @@ def step_commit(code, p, h, d):
     """contact_commit, plus the state (δ_n, f̃_n) the next step's discrete gradient starts from."""
     contact_commit(code, h, d)
     g = 0.0
-    if _hertzian(code) and (d > 0.0 or h[H_D_LAST] > 0.0):
+    if hertz_spring(code) and (d > 0.0 or h[H_D_LAST] > 0.0):
         g = hertz_gradient(p[K_H], h[H_D_LAST], h[H_F_LAST], d)[0]
     h[H_D_LAST] = d
     h[H_F_LAST] = g if d > 0.0 else 0.0
@@ -173,6 +136,6 @@ def recorded_force(code, p, h, d, v, f_step):
     """The force [kip] to record for an open episode after a step that used ``f_step``: the law's
     own force at the recorded state for the Hertz laws (their step force differs from it by the
     discrete gradient's O(Δδ²) trapezoidal defect), ``f_step`` for the others."""
-    if _hertzian(code):
+    if hertz_spring(code):
         return contact_force(code, p, h, d, v)[0]
     return f_step

@@ -7,20 +7,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact.codes import LINEAR
+from femoat.contact import _checks
+from femoat.contact.spec import KernelFamily, LawSpec
 from femoat.jit import njit
 
 K_EFF = 0
 N_PARAMS = 1
 
+_FY_NEVER = 1e12
+"""A yield force [kip] OpenSees' ElasticPPGap never reaches: a purely elastic gap."""
+
 
 @njit(cache=True)
-def linear_force(p, d):
+def linear_force(p, h, d, v):
     return p[K_EFF] * d, p[K_EFF], 0.0
 
 
 @njit(cache=True)
-def linear_energy(p, d):
+def linear_energy(p, h, d):
     return 0.5 * p[K_EFF] * d * d
 
 
@@ -30,11 +34,13 @@ class Linear:
 
     Parameters
     ----------
-    k_eff : float  [kip/in]  spring stiffness (k_h·√δ_me)
+    k_eff : float  [kip/in]  spring stiffness (k_h·√δ_me), > 0
     """
 
     k_eff: float
-    code = LINEAR
+
+    def __post_init__(self):
+        _checks.positive("k_eff", self.k_eff, "[kip/in]")
 
     @classmethod
     def from_law(cls, law):
@@ -46,3 +52,13 @@ class Linear:
     def separation_indicator(self, d, v, v0):
         """Sign of the unclipped force when it can end a contact before δ = 0 (never here)."""
         return 1.0
+
+    def opensees_material(self, gap):
+        """``ElasticPPGap k_eff −Fy_huge −g0``: the same law."""
+        return ("ElasticPPGap", self.k_eff, -_FY_NEVER, -gap)
+
+
+KERNELS = KernelFamily("linear", linear_force, linear_energy, N_PARAMS)
+
+LAW = LawSpec("E", "linear elastic", KERNELS, Linear, paper=True,
+              style=dict(color="#1f77b4", linestyle="-"))

@@ -7,11 +7,13 @@ Params ``p = [k1, k2, delta_y]``: stiffnesses [kip/in], yield indentation [in]. 
 ``h[H_DMAX]`` = δ_m [in], advanced by :func:`muthukumar_commit`.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from femoat.contact.codes import H_DMAX, MUTHUKUMAR
+from femoat.contact import _checks
+from femoat.contact.history import H_DMAX
+from femoat.contact.spec import KernelFamily, LawSpec
 from femoat.jit import njit
 
 K1, K2, DELTA_Y = 0, 1, 2
@@ -43,7 +45,7 @@ def _unloading(p, dm, d):
 
 
 @njit(cache=True)
-def muthukumar_force(p, h, d):
+def muthukumar_force(p, h, d, v):
     f, k = _unloading(p, h[H_DMAX], d)
     return f, k, 0.0
 
@@ -69,26 +71,61 @@ def muthukumar_commit(h, d):
         h[H_DMAX] = d
 
 
+def muthukumar_loss_factor(e):
+    """Loss factor λ = 0.4·(1−e²) of the Muthukumar bilinear law [-]."""
+    _checks.restitution(e)
+    return 0.4 * (1.0 - e * e)
+
+
+def muthukumar_stiffnesses(k_eff, e, a, loss=None):
+    """Loading stiffnesses (k1, k2) [kip/in] of the Muthukumar bilinear law.
+
+    k1 = (1 + λ/a)·k_eff and k2 = (1 − λ/(1−a))·k_eff with λ = 0.4(1−e²) unless ``loss`` gives λ.
+    With these, the loop dissipates λ·k_eff·δ_me² when the indentation reaches δ_me, while the
+    backbone stores ½(1+λ)·k_eff·δ_me² (so that, at δ_max = δ_me, e² = (1−λ)/(1+λ) exactly).
+    """
+    lam = muthukumar_loss_factor(e) if loss is None else loss
+    k1 = (1.0 + lam / a) * k_eff
+    k2 = (1.0 - lam / (1.0 - a)) * k_eff
+    if k2 <= 0.0 and loss is None:
+        raise ValueError(
+            f"The Muthukumar law with loss factor {lam:.4g} (e = {e}) and a = {a} has a "
+            f"non-positive second stiffness k2 = {k2:.4g} kip/in: choose a smaller a "
+            "(a < 1 - loss factor) or a larger e."
+        )
+    if k2 <= 0.0:
+        raise ValueError(
+            f"damping (loss_factor) = {lam!r} must be in [0, 1 - a) = [0, {1.0 - a:.6g}): a "
+            f"larger loss factor gives a non-positive second stiffness k2 = {k2:.4g} kip/in."
+        )
+    return k1, k2
+
+
 @dataclass(frozen=True)
 class Muthukumar:
     """Muthukumar's bilinear law.
 
     Parameters
     ----------
-    k1 : float       [kip/in]  first loading stiffness
-    k2 : float       [kip/in]  second loading stiffness
-    delta_y : float  [in]      yield indentation a·δ_me
+    k1 : float       [kip/in]  first loading stiffness, > 0
+    k2 : float       [kip/in]  second loading stiffness, > 0
+    delta_y : float  [in]      yield indentation a·δ_me, > 0
     """
 
     k1: float
     k2: float
     delta_y: float
-    code = MUTHUKUMAR
+
+    def __post_init__(self):
+        _checks.positive("k1", self.k1, "[kip/in]")
+        _checks.positive("k2", self.k2, "[kip/in]")
+        _checks.positive("delta_y", self.delta_y, "[in]")
 
     @classmethod
     def from_law(cls, law):
-        k1, k2 = law.stiffnesses()
-        return cls(k1, k2, law.params.delta_y)
+        pr = law.params
+        k1, k2 = muthukumar_stiffnesses(pr.k_eff, pr.e, pr.a, loss=law.damping_parameter())
+        return cls(k1, k2, pr.delta_y)
 
     def params(self):
         return np.array([self.k1, self.k2, self.delta_y], dtype=np.float64)
@@ -96,3 +133,51 @@ class Muthukumar:
     def separation_indicator(self, d, v, v0):
         """The force never vanishes before δ = 0 (the unloading path ends at the origin)."""
         return 1.0
+
+    def opensees_material(self, gap):
+        """``ImpactMaterial k1 k2 −δ_y −g0``. Incremental (σ = σ_c + k1·Δε): the first contact
+        step's Δε includes the free travel before closure, an offset k1·θ·v0·dt (θ: fraction of
+        the step before closure) that lasts until the loading branch meets the k2 backbone."""
+        return ("ImpactMaterial", self.k1, self.k2, -self.delta_y, -gap)
+
+
+def calibrate_bilinear(law, search):
+    """The bilinear law made self-consistent at the search's impact speed and target e.
+
+    Its loop is sized for an indentation that reaches δ_me, and a slow impact that never passes
+    δ_y = a·δ_me dissipates nothing whatever the loss factor (at 1 in/s with the concrete preset
+    the peak indentation is 0.0005 in < δ_y = 0.0025 in). So δ_me is set to the indentation the
+    impact actually reaches and λ to the value that gives e. Against a rigid stop both follow in
+    closed form: the backbone stores ½(1+λ)·k_eff·δ_me² and the loop dissipates λ·k_eff·δ_me², so
+
+        e² = (1−λ)/(1+λ)  →  λ = (1−e²)/(1+e²),    ½·m·v0² = ½(1+λ)·k_h·δ_me^2.5.
+
+    Against a wall a fixed-point iteration on δ_me wraps the search for λ.
+    """
+    pr, target, v0 = law.params, search.target, search.v0
+    lam = (1.0 - target**2) / (1.0 + target**2)
+    if lam >= 1.0 - pr.a:
+        raise ValueError(
+            f"target = {target}: the bilinear law needs a loss factor {lam:.3f} >= 1 - a = "
+            f"{1 - pr.a:.3f}, which makes k2 <= 0; lower a or raise the target."
+        )
+    delta_me = (pr.m_eff * v0**2 / ((1.0 + lam) * pr.k_h)) ** 0.4
+    calibrated = replace(law, params=replace(pr, delta_me=delta_me), damping=lam)
+    if search.wall is None:
+        return search.check(calibrated)
+    for _ in range(50):
+        calibrated = search.solve(calibrated, 0.0, 1.0 - pr.a - 1e-9)
+        d_max = search.max_indentation(calibrated)
+        if abs(d_max - calibrated.params.delta_me) <= 1e-8 * d_max:
+            return search.check(calibrated)
+        calibrated = replace(calibrated, params=replace(calibrated.params, delta_me=d_max))
+    raise RuntimeError("Calibration of the bilinear law against the wall did not converge.")
+
+
+KERNELS = KernelFamily("muthukumar", muthukumar_force, muthukumar_energy, N_PARAMS,
+                       commit=muthukumar_commit)
+
+LAW = LawSpec("M", "Muthukumar bilinear", KERNELS, Muthukumar, paper=True,
+              style=dict(color="#9467bd", linestyle=(0, (5, 1, 1, 1))),
+              damping="loss_factor", damping_from_e=muthukumar_loss_factor,
+              calibration=calibrate_bilinear)

@@ -31,8 +31,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from femoat.contact import kernels
-from femoat.contact.codes import H_V0
 from femoat.contact.episode import ContactDidNotEndError, ImpactResult
+from femoat.contact.history import H_DMAX, H_V0
 from femoat.contact.laws import ContactLaw
 from femoat.walls.sdof import SdofWall
 
@@ -205,7 +205,7 @@ def simulate_impact(law, v0, wall=None, mass=None, rtol=1e-11, samples_per_phase
     force = np.empty_like(time)
     hh = h.copy()
     for i in range(time.size):
-        hh[1] = dmax_run[i]
+        hh[H_DMAX] = dmax_run[i]
         force[i] = kernels.contact_force(code, p, hh, d_hist[i], dd_hist[i])[0]
 
     v_end, e_contact, e_dashpot = y[1], y[iec], y[iec + 1]

@@ -19,18 +19,13 @@ OpenSees conventions (written once here)
   falls in the middle of a step, the generic case); contact starts at t_c = g0/v0 exactly,
   because the free flight at constant velocity is integrated exactly.
 
-Material map (arguments after the tag; checked against the OpenSees sources,
-SRC/material/uniaxial) and how each differs from femoat's law
---------------------------------------------------------------------------------
-* E: ``ElasticPPGap k_eff −Fy_huge −g0``. Same law.
-* V: ``ViscoelasticGap k_eff c_eff −g0``. Pulls (tension) until δ = 0, so it equals femoat's
-  ``allow_tension=True`` variant, not the default (e = 0.679 instead of 0.700).
-* J: ``JankowskiImpact k_h ξ_J m_eff −g0 1.5``. Same law.
-* H: ``Hertzdamp k_h ξ_h −g0 1.5``. δ̇₀ is the rate at the end of the first contact step
-  (not at closure); tension is not cut (reached only if the rebound rate exceeds δ̇₀/ξ_h).
-* M: ``ImpactMaterial k1 k2 −δ_y −g0``. Incremental (σ = σ_c + k1·Δε): the first contact
-  step's Δε includes the free travel before closure, an offset k1·θ·v0·dt (θ: fraction of
-  the step before closure) that lasts until the loading branch meets the k2 backbone.
+Material map
+------------
+Each law names its twin: the ``opensees_material(gap)`` method of its parameter dataclass (in
+the law's module, e.g. :meth:`femoat.contact.kelvin_voigt.KelvinVoigt.opensees_material`) gives
+the material's arguments after the tag (checked against the OpenSees sources,
+SRC/material/uniaxial) and says how it differs from femoat's law. A law without that method has
+no twin.
 """
 
 import math
@@ -40,8 +35,6 @@ import numpy as np
 from femoat.contact.laws import ContactLaw
 from femoat.opensees.available import import_opensees
 from femoat.walls.sdof import SdofWall
-
-_FY_NEVER = 1e12  # [kip] a yield force ElasticPPGap never reaches: a purely elastic gap
 
 
 def opensees_contact_material(law, gap):
@@ -58,17 +51,11 @@ def opensees_contact_material(law, gap):
         raise ValueError("law must be a ContactLaw (see femoat.contact.make_law).")
     if not (math.isfinite(gap) and gap > 0):
         raise ValueError(f"gap = {gap!r} must be a positive initial opening [in].")
-    pr = law.params
-    if law.kind == "E":
-        return ("ElasticPPGap", pr.k_eff, -_FY_NEVER, -gap)
-    if law.kind == "V":
-        return ("ViscoelasticGap", pr.k_eff, law.c_eff, -gap)
-    if law.kind == "J":
-        return ("JankowskiImpact", pr.k_h, law.damping_parameter(), pr.m_eff, -gap, 1.5)
-    if law.kind == "H":
-        return ("Hertzdamp", pr.k_h, law.damping_parameter(), -gap, 1.5)
-    k1, k2 = law.stiffnesses()
-    return ("ImpactMaterial", k1, k2, -pr.delta_y, -gap)
+    resolved = law.resolved()
+    if not hasattr(resolved, "opensees_material"):
+        raise ValueError(f"law = {law.kind!r}: the {law.name} law has no OpenSees twin (its "
+                         "parameter class defines no opensees_material).")
+    return resolved.opensees_material(gap)
 
 
 def opensees_impact(law, v0, wall=None, dt=1e-6, mass=None, gap=None, t_max=None):

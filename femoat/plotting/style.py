@@ -1,12 +1,27 @@
-"""Shared plotting conventions: one colour and line style per contact law."""
+"""Shared plotting conventions: one colour and line style per contact law, each declared by the
+law's own module (its ``LAW.style``, :mod:`femoat.contact.laws`)."""
 
-LAW_STYLE = {
-    "E": dict(color="#1f77b4", linestyle="-", label="E  linear elastic"),
-    "V": dict(color="#ff7f0e", linestyle="--", label="V  Kelvin-Voigt"),
-    "J": dict(color="#2ca02c", linestyle="-.", label="J  Jankowski"),
-    "H": dict(color="#d62728", linestyle=":", label="H  Hertzdamp"),
-    "M": dict(color="#9467bd", linestyle=(0, (5, 1, 1, 1)), label="M  Muthukumar bilinear"),
-}
+from collections.abc import Mapping
+
+from femoat.contact.laws import LAW_SPECS
+
+
+class _LawStyles(Mapping):
+    """Letter → matplotlib keywords (colour, line style, label "E  linear elastic"), read from
+    the registry when asked, so a law added with :func:`femoat.contact.register` has its own."""
+
+    def __getitem__(self, letter):
+        spec = LAW_SPECS[letter]
+        return dict(spec.style, label=f"{letter}  {spec.name}")
+
+    def __iter__(self):
+        return iter(LAW_SPECS)
+
+    def __len__(self):
+        return len(LAW_SPECS)
+
+
+LAW_STYLE = _LawStyles()
 
 
 def pyplot():

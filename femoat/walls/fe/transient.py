@@ -43,7 +43,7 @@ import scipy.linalg
 import scipy.sparse.linalg as sla
 
 from femoat.contact import kernels
-from femoat.contact.codes import H_V0
+from femoat.contact.history import H_V0
 from femoat.contact.laws import ContactLaw
 from femoat.contact.episode import ContactDidNotEndError, ImpactResult
 

@@ -1,5 +1,6 @@
-"""Integer codes of the contact laws and the layout of a contact's history array, shared by the
-kernels and the Python side (numba reads module-level integers as compile-time constants).
+"""The layout of a contact's history array, shared by the kernels and the Python side (numba
+reads module-level integers as compile-time constants). The laws' integer codes are not here:
+:mod:`femoat.contact.laws` numbers the kernel families in registry order.
 
 History ``h`` (length :data:`N_HISTORY`, float64), one per contact:
 
@@ -9,8 +10,6 @@ History ``h`` (length :data:`N_HISTORY`, float64), one per contact:
   the last committed step [in] and the elastic force f̃_n that step used there [kip] (the
   discrete gradient of :mod:`femoat.contact.hertz`).
 """
-
-LINEAR, KELVIN_VOIGT, JANKOWSKI, HERTZDAMP, MUTHUKUMAR = 0, 1, 2, 3, 4
 
 H_V0, H_DMAX, H_D_LAST, H_F_LAST = 0, 1, 2, 3
 N_HISTORY = 4
