@@ -59,7 +59,7 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
         preset = wall_preset(name, damping=damping)
     with naming(f"{where} law = {kind!r}:"):
         law = make_law(kind, preset.contact)
-    if flag(d, "calibrate", default["calibrate"], where) and law.kind != "E":
+    if flag(d, "calibrate", default["calibrate"], where) and law.calibratable:
         from femoat.impact.calibration import calibrate as calibrate_law  # scipy.integrate: 1 s
 
         law = calibrate_law(law, number(d, "calibrate_v0", default["calibrate_v0"], where, "in/s"))
