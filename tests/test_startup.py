@@ -1,4 +1,5 @@
-"""Process start-up: lazy numba, and the ahead-of-time compiled solver kernels (femoat.aot).
+"""Process start-up: lazy numba, no source read, and the ahead-of-time compiled solver kernels
+(femoat.compilation.aot).
 
 A new process must not pay for numba (≈1.2 s here) when the compiled kernels exist; the AOT
 kernels must give exactly the JIT's results. The build runs in a temporary cache folder
@@ -13,7 +14,7 @@ import numpy as np
 import pytest
 from conftest import _python_env, run_in
 
-from femoat import aot
+from femoat.compilation import aot, sources
 from femoat.paper import paper_model, paper_motion
 from femoat.run import run
 
@@ -109,21 +110,52 @@ def test_asking_for_missing_aot_kernels_is_explained():
         run(paper_model("concrete", "H"), paper_motion(quick=True), duration=0.1, backend="gpu")
 
 
-def test_module_key_follows_the_kernel_sources(tmp_path):
+def test_module_key_follows_the_kernel_sources(tmp_path, monkeypatch):
     # A copy of the package's kernel sources: the key must change when any of them changes,
     # so an edited kernel is never served by a stale compiled module.
-    src = Path(aot.__file__).resolve().parent
-    for entry in aot._SOURCES:
-        p = src / entry
-        dst = tmp_path / entry
-        if p.is_dir():
-            shutil.copytree(p, dst, ignore=shutil.ignore_patterns("__pycache__"))
-        else:
-            dst.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy(p, dst)
-    first = aot._key(tmp_path)
-    assert first == aot._key(src)  # same sources, same key
+    for f in sources.sources("kernels"):
+        dst = tmp_path / f.relative_to(sources.PACKAGE)
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(f, dst)
+    first = aot.key(tmp_path)
+    assert first == aot.key(sources.PACKAGE)  # same sources, same key
     with open(tmp_path / "structure" / "materials" / "imk.py", "a") as f:
         f.write("\n# edited\n")
-    aot._key.cache_clear()  # (computed once per process: sources do not change under a run)
-    assert aot._key(tmp_path) != first
+    # (computed once per process: sources do not change under a run)
+    aot.key.cache_clear()
+    monkeypatch.setattr(sources, "_digests", {})
+    assert aot.key(tmp_path) != first
+
+
+_READS = (
+    "import sys\n"
+    "root = {root!r}\n"
+    "reads = []\n"
+    "def hook(event, args):\n"
+    "    if event == 'open' and isinstance(args[0], str) and args[0].startswith(root) \\\n"
+    "            and args[0].endswith('.py'):\n"
+    "        f = sys._getframe(1)\n"
+    "        while f and not f.f_code.co_filename.startswith('<frozen importlib'):\n"
+    "            f = f.f_back\n"
+    "        if f is None:  # not the import system reading a module to compile it\n"
+    "            reads.append(args[0])\n"
+    "sys.addaudithook(hook)\n"
+    "import femoat.cli, femoat.paper, femoat.run, femoat.scenario, femoat.suite\n"
+    "from femoat.integration.solve import kernels\n"
+    "print(kernels()[1], reads)\n"
+)
+
+
+def test_importing_femoat_and_loading_the_aot_module_reads_no_source_file(built, tmp_path):
+    # Python's audit hook sees every file opened; the import system's own reads (compiling a
+    # module whose bytecode is stale) do not count. The first process after a change of the
+    # sources hashes them once (here: the build); later ones read none.
+    code = _READS.format(root=str(sources.PACKAGE))
+    for _ in range(2):
+        done = _python(code, _env(built))
+        assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.strip() == "aot []"
+    # the check can fail: the process that first keys the module on a fresh cache reads them
+    done = _python(code, _env(tmp_path))
+    used, reads = done.stdout.strip().split(" ", 1)
+    assert used == "jit" and str(sources.PACKAGE / "integration" / "kernel.py") in reads

@@ -19,7 +19,7 @@ def add_parser(sub):
 def run(args):
     import time
 
-    from femoat import aot
+    from femoat.compilation import aot, aot_build
 
     path = aot.module_path()
     if args.check:
@@ -32,7 +32,7 @@ def run(args):
                          "FEMOAT_CACHE=off); unset it to compile")
     clock = time.perf_counter()
     try:
-        path = aot.build(force=args.force)
+        path = aot_build.build(force=args.force)
     except RuntimeError as err:
         raise ValueError(str(err)) from None
     print(f"wrote {path} ({time.perf_counter() - clock:.1f} s)")

@@ -322,32 +322,30 @@ def _canonical(packed):
 
 def kernels(backend="auto"):
     """(namespace of the solver's compiled entry points, "aot" or "jit") for ``backend``."""
-    from femoat import compiled
+    from femoat.compilation import aot
 
     if backend not in ("auto", "jit", "aot"):
         raise ValueError(f"backend = {backend!r}: use 'auto', 'jit' or 'aot'.")
     if backend != "jit":
-        module = compiled.load()
+        module = aot.load()
         if module is not None:
             return module, "aot"
         if backend == "aot":
             raise ValueError("no ahead-of-time compiled kernels for this femoat, Python and "
-                             "numba: run `femoat compile` (or femoat.aot.build()), or use "
-                             "backend='auto'.")
+                             "numba: run `femoat compile` (or "
+                             "femoat.compilation.aot_build.build()), or use backend='auto'.")
     return _jit_kernels(), "jit"
 
 
 def _jit_kernels():
+    """The entry points (:data:`femoat.compilation.exports.EXPORTS`) as numba's JIT kernels."""
+    from importlib import import_module
     from types import SimpleNamespace
 
-    from femoat.contact.kernels import contact_stored_energy
-    from femoat.structure.materials import material_commit, material_recoverable_energy
+    from femoat.compilation.exports import EXPORTS
 
-    return SimpleNamespace(run_chunk=kn.run_chunk, ground_accel=kn.ground_accel,
-                           internal_force=kn.internal_force, start_peaks=kn.start_peaks,
-                           finish_peaks=kn.finish_peaks, material_commit=material_commit,
-                           material_recoverable_energy=material_recoverable_energy,
-                           contact_stored_energy=contact_stored_energy)
+    return SimpleNamespace(**{name: getattr(import_module(module), name)
+                              for name, module in EXPORTS.items()})
 
 
 def _uncoupled_size(packed):

@@ -129,26 +129,14 @@ class Suite:
                     solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse)
 
 
-_NOT_RESULTS = ("commands", "plotting", "render", "opensees", "suite")
-
-
 @functools.lru_cache(maxsize=1)
 def code_version():
     """femoat's version and a fingerprint of the sources that can change a run's result
-    (everything but the command line, plotting, rendering, OpenSees and the suite machinery
-    itself besides its run path), e.g. ``0.1.0+1a2b3c4d``."""
+    (:func:`femoat.compilation.sources.sources`, scope ``"results"``), e.g. ``0.1.0+1a2b3c4d``."""
     from femoat import __version__
+    from femoat.compilation.sources import fingerprint
 
-    root = Path(__file__).resolve().parents[1]
-    h = hashlib.sha256()
-    files = [p for p in sorted(root.rglob("*.py"))
-             if p.relative_to(root).parts[0] not in _NOT_RESULTS]
-    files += [root / "suite" / name for name in ("model.py", "records.py", "runs.py",
-                                                  "scaling.py")]
-    for p in files:
-        h.update(p.relative_to(root).as_posix().encode())
-        h.update(p.read_bytes())
-    return f"{__version__}+{h.hexdigest()[:8]}"
+    return f"{__version__}+{fingerprint('results')[:8]}"
 
 
 def load_suite(path=None):

@@ -2,8 +2,10 @@
 
 numba keys a cached function on the modification time of *its own* source file only. The
 time-stepping loop inlines the contact-law and material kernels from other files, so editing a
-kernel would leave a stale compiled loop in the cache. :func:`drop_stale_cache` hashes the files
-a compiled module depends on and deletes that module's cache entries when the hash changes.
+kernel would leave a stale compiled loop in the cache. :func:`drop_stale_cache` deletes a
+module's cache entries when the fingerprint of every kernel source
+(:func:`femoat.compilation.sources.fingerprint`) differs from the one they were compiled with;
+:mod:`femoat.compilation.jit` calls it before numba first compiles or loads a module's kernels.
 """
 
 import hashlib
@@ -24,26 +26,16 @@ def cache_dirs(module_file):
     return out
 
 
-def drop_stale_cache(module_file, dependencies, tag="deps"):
-    """Delete ``module_file``'s numba cache files if any file in ``dependencies`` changed.
-
-    ``tag`` names the stamp file, so that independent checks of one module (its inlined
-    dependencies; femoat.jit's compile options) do not overwrite each other's stamps.
-    """
+def drop_stale_cache(module_file, digest):
+    """Delete ``module_file``'s numba cache files unless they were compiled from sources whose
+    fingerprint is ``digest``; then stamp its cache folders with ``digest``."""
     module_file = Path(module_file)
-    h = hashlib.sha256()
-    for dep in sorted(str(d) for d in dependencies):
-        try:
-            h.update(Path(dep).read_bytes())
-        except OSError:
-            return
-    digest = h.hexdigest()
     for cache_dir in cache_dirs(module_file):
-        _drop_if_stale(cache_dir, module_file.stem, tag, digest)
+        _drop_if_stale(cache_dir, module_file.stem, digest)
 
 
-def _drop_if_stale(cache_dir, stem, tag, digest):
-    stamp = cache_dir / f"{stem}.{tag}-sha256"
+def _drop_if_stale(cache_dir, stem, digest):
+    stamp = cache_dir / f"{stem}.sources-sha256"
     try:
         if stamp.read_text() == digest:
             return

@@ -5,8 +5,8 @@ Importing numba and initialising its CPU target costs each process more than a w
 in ``benchmarks/README.md``). femoat's kernels are decorated with :func:`njit` from this module
 instead of numba's: the decorator only records the function, and numba is imported on the first call
 from Python (or when another kernel that calls this one is compiled). A process that runs the
-building solver through the ahead-of-time compiled module (:mod:`femoat.aot`) never imports
-numba at all.
+building solver through the ahead-of-time compiled module (:mod:`femoat.compilation.aot`) never
+imports numba at all.
 
 Inside compiled code a :class:`Kernel` is exactly its numba dispatcher: numba is taught to
 type it as one (``typeof`` is registered for :class:`Kernel` when numba is first imported
@@ -15,7 +15,6 @@ here), so kernels call kernels at full speed and numba's on-disk cache works as 
 
 import functools
 import sys
-from pathlib import Path
 
 _registered = False
 _checked = set()
@@ -69,15 +68,17 @@ class Kernel:
 
 
 def _fresh_cache(func):
-    """numba's cache does not key on compile options: drop a module's cached kernels when this
-    file (which sets them) changed since they were compiled."""
-    from femoat.numba_cache import drop_stale_cache
-
+    """Before numba first compiles or loads a kernel of a module, drop that module's cached
+    kernels if any kernel source changed since (numba itself checks only the module's own file,
+    and neither the kernels it inlines from others nor the compile options set here)."""
     module_file = getattr(sys.modules.get(func.__module__), "__file__", None)
     if module_file is None or module_file in _checked:
         return
     _checked.add(module_file)
-    drop_stale_cache(module_file, [__file__], tag="jit")
+    from femoat.compilation.numba_cache import drop_stale_cache
+    from femoat.compilation.sources import fingerprint
+
+    drop_stale_cache(module_file, fingerprint("kernels"))
 
 
 def _register():

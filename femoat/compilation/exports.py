@@ -1,0 +1,20 @@
+"""The building solver's compiled entry points: the kernels it calls from Python.
+
+One list for the three places that must agree on it: the JIT namespace
+(:func:`femoat.integration.solve.kernels` with ``backend="jit"``), the ahead-of-time build
+(:mod:`~femoat.compilation.aot_build` exports exactly these) and the loader
+(:func:`femoat.compilation.aot.load` accepts a module only when it has them all). Modules are
+named, not imported, so that the loader stays free of numba and of the solver.
+"""
+
+EXPORTS = {
+    "run_chunk": "femoat.integration.kernel",
+    "ground_accel": "femoat.integration.forces",
+    "internal_force": "femoat.integration.forces",
+    "start_peaks": "femoat.integration.peaks",
+    "finish_peaks": "femoat.integration.peaks",
+    "material_commit": "femoat.structure.materials.kernels",
+    "material_recoverable_energy": "femoat.structure.materials.kernels",
+    "contact_stored_energy": "femoat.contact.kernels",
+}
+"""{name: module defining the kernel of that name}."""
