@@ -52,11 +52,12 @@ def main(argv=None):
     print(f"largest peak-force change against the 10x stricter run: {worst:.2e}")
 
     # A second process: the whole start (interpreter, imports, kernels, one paper run), with the
-    # ahead-of-time kernels (femoat.aot; built here if missing) and with numba's JIT cache.
-    from femoat import aot
+    # ahead-of-time kernels
+    # (femoat.compilation.aot; built here if missing) and with numba's JIT cache.
+    from femoat.compilation import aot, aot_build
 
     if aot.enabled():
-        aot.ensure(report=lambda m: print(m, flush=True))
+        aot_build.ensure(report=lambda m: print(m, flush=True))
     code = ("import time, sys; t = time.perf_counter(); from femoat.paper import paper_model, "
             "paper_motion; from femoat.run import run; "
             "r = run(paper_model('steel', 'J'), paper_motion()); "

@@ -66,10 +66,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
-    from femoat import aot
+    from femoat.compilation import aot_build
     from femoat.suite import load_suite, load_table, run_suite
 
-    aot.ensure()
+    aot_build.ensure()
     work = Path(args.keep or tempfile.mkdtemp(prefix="femoat-suite-bench-"))
     work.mkdir(parents=True, exist_ok=True)
     levels = [round(0.1 * (k + 1), 2) for k in range(args.levels)]

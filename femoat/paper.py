@@ -50,10 +50,11 @@ def run_paper_study(damping="published", quick=False, calibrate=False, integrato
     """Run the study; returns (runs {(wall, law): RunResult}, motion).
 
     The solver's start-up (numba compilation or kernel loading) is paid and timed before the
-    first run (:func:`femoat.warmup.warm_up`) and kept as ``meta["compile_seconds"]`` of that run
+    first run
+    (:func:`femoat.compilation.warmup.warm_up`) and kept as ``meta["compile_seconds"]`` of that run
     (0.0 for the others), so that every run's ``cpu_seconds`` is solver time only.
     """
-    from femoat.warmup import warm_up
+    from femoat.compilation.warmup import warm_up
 
     motion = paper_motion(quick)
     integ = integrator or Integrator()

@@ -47,7 +47,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         Decimate the open phase with ``Integrator(record_every=k)``.
     backend : str
         Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
-        "aot" (see :mod:`femoat.aot`); the results are identical.
+        "aot" (see :mod:`femoat.compilation.aot`); the results are identical.
     collapse : CollapseCriteria or None
         Limit states to check after every step (:mod:`femoat.collapse`); their first times are
         in ``result.collapse``, and the run ends at the first one unless ``collapse.stop`` is

@@ -13,7 +13,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "femoat"
 
 LAYERS = [
     # 0 foundations: units, files, compiled-code plumbing, records
-    ("femoat", "femoat.units", "femoat.atomic", "femoat.jit", "femoat.numba_cache",
+    ("femoat", "femoat.units", "femoat.atomic", "femoat.compilation",
      "femoat.dense_peaks", "femoat.ground_motions"),
     # 1 constitutive laws: contact laws, structural materials
     ("femoat.contact", "femoat.structure.materials"),
@@ -24,7 +24,8 @@ LAYERS = [
     # 4 time integration: the building solver, the single-impact solver
     ("femoat.integration", "femoat.impact"),
     # 5 runs and what they produce; the ahead-of-time build; the OpenSees twin
-    ("femoat.results", "femoat.collapse", "femoat.run", "femoat.aot", "femoat.warmup",
+    ("femoat.results", "femoat.collapse", "femoat.run", "femoat.compilation.aot_build",
+     "femoat.compilation.probe", "femoat.compilation.warmup",
      "femoat.opensees"),
     # 6 figures and renderings (never imported by layers 0-5)
     ("femoat.plotting", "femoat.render"),

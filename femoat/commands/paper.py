@@ -67,6 +67,6 @@ def _compile_ahead_of_time():
     """Once per install: the solver's ahead-of-time kernels, so later processes start fast."""
     import sys
 
-    from femoat import aot
+    from femoat.compilation import aot_build
 
-    aot.ensure(report=lambda message: print(message, file=sys.stderr, flush=True))
+    aot_build.ensure(report=lambda message: print(message, file=sys.stderr, flush=True))

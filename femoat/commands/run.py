@@ -58,7 +58,7 @@ def run(args):
 
     sc = load_scenario(args.scenario)
     out = args.out or sc.output_folder
-    from femoat.warmup import warm_up
+    from femoat.compilation.warmup import warm_up
 
     startup = warm_up()  # compile / load the kernels outside the run's timed loop
     try:

@@ -25,13 +25,14 @@ from femoat.atomic import write_text
 PACKAGE = Path(__file__).resolve().parents[1]
 """femoat's package folder (the default root of every scope)."""
 
-KERNELS = ("compilation/jit.py", "contact", "integration", "structure/materials")
+KERNELS = ("compilation/jit.py", "contact", "integration", "plan", "structure/materials")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 
 NOT_RESULTS = ("commands", "plotting", "render", "opensees", "suite")
 """Top-level parts of the package that cannot change a run's result ..."""
 
-SUITE_RUN_PATH = ("suite/model.py", "suite/records.py", "suite/runs.py", "suite/scaling.py")
+SUITE_RUN_PATH = ("suite/columns.py", "suite/huntfill.py", "suite/model.py", "suite/records.py",
+                  "suite/runs.py", "suite/scaling.py", "suite/variations.py")
 """... except these files of the suite machinery, which build and run a suite's runs."""
 
 SCOPES = ("kernels", "results")

@@ -12,7 +12,7 @@ from femoat.contact.jankowski import jankowski_force
 from femoat.contact.kelvin_voigt import kelvin_voigt_energy, kelvin_voigt_force
 from femoat.contact.linear import linear_energy, linear_force
 from femoat.contact.muthukumar import muthukumar_commit, muthukumar_energy, muthukumar_force
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 FAMILIES = ("linear", "kelvin_voigt", "jankowski", "hertzdamp", "muthukumar")
 """The kernel families, by code (checked against the registry by :mod:`femoat.contact.kernels`)."""

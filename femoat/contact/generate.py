@@ -26,7 +26,7 @@ Family codes: {codes}.
 import numpy as np
 
 {imports}
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 FAMILIES = {names}
 """The kernel families, by code (checked against the registry by :mod:`femoat.contact.kernels`)."""

@@ -19,7 +19,7 @@ the trapezoidal rule) keep using the law's own force.
 
 import numpy as np
 
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 K_H = 0
 """Index of k_h [kip/in^1.5] in the params of every law built on the Hertz spring."""

@@ -13,7 +13,7 @@ from femoat.contact import _checks
 from femoat.contact.hertz import K_H, hertz_energy
 from femoat.contact.history import H_V0
 from femoat.contact.spec import Bracket, KernelFamily, LawSpec
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 XI_H, V0_MIN = 1, 2
 N_PARAMS = 3

@@ -12,7 +12,7 @@ import numpy as np
 from femoat.contact import _checks
 from femoat.contact.hertz import K_H, hertz_energy
 from femoat.contact.spec import Bracket, KernelFamily, LawSpec
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 XI_J, M_EFF = 1, 2
 N_PARAMS = 3

@@ -14,20 +14,11 @@ What the family declares (:class:`~femoat.contact.spec.KernelFamily`: a Hertz sp
 that need not vanish at δ = 0⁺) is all the time-stepping variants below ask of it.
 """
 
-from pathlib import Path
-
 import numpy as np
 
-from femoat.jit import njit
-from femoat.numba_cache import drop_stale_cache
-
-# the dispatchers inline the kernels of the sibling modules (numba's cache does not see it)
-_HERE = Path(__file__).resolve().parent
-for _compiled in ("kernels.py", "_dispatch.py"):
-    drop_stale_cache(_HERE / _compiled, sorted(_HERE.glob("*.py")))
-
-from femoat.contact import _dispatch  # noqa: E402
-from femoat.contact._dispatch import (  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.contact import _dispatch
+from femoat.contact._dispatch import (
     N_PARAMS,
     acts_at_zero,
     family_commit,
@@ -35,9 +26,9 @@ from femoat.contact._dispatch import (  # noqa: E402
     family_force,
     hertz_spring,
 )
-from femoat.contact.hertz import K_H, hertz_gradient  # noqa: E402
-from femoat.contact.history import H_D_LAST, H_DMAX, H_F_LAST, H_V0, N_HISTORY  # noqa: E402
-from femoat.contact.laws import FAMILIES  # noqa: E402
+from femoat.contact.hertz import K_H, hertz_gradient
+from femoat.contact.history import H_D_LAST, H_DMAX, H_F_LAST, H_V0, N_HISTORY
+from femoat.contact.laws import FAMILIES
 
 if (_dispatch.FAMILIES, N_PARAMS) != (tuple(f.name for f in FAMILIES),
                                       max(f.n_params for f in FAMILIES)):

@@ -14,8 +14,8 @@ takes it out again.
 How a law reaches the compiled loop
 -----------------------------------
 numba cannot add a branch to a compiled dispatcher at run time, and the ahead-of-time module
-(:mod:`femoat.aot`) is built once. So the compiled side knows *kernel families*, not laws: a
-family (:class:`~femoat.contact.spec.KernelFamily`) is a set of kernels with one params layout,
+(:mod:`femoat.compilation.aot`) is built once. So the compiled side knows *kernel families*,
+not laws: a family (:class:`~femoat.contact.spec.KernelFamily`) is a set of kernels with one params layout,
 and a law names the family it runs on and packs its parameters in that layout. The families
 are those of :data:`MODULES`, numbered in that order (:data:`FAMILIES`; a law's ``code`` is its
 family's number), and the dispatcher that selects a family's kernel by that number,

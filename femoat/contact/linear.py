@@ -9,7 +9,7 @@ import numpy as np
 
 from femoat.contact import _checks
 from femoat.contact.spec import KernelFamily, LawSpec
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 K_EFF = 0
 N_PARAMS = 1

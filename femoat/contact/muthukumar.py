@@ -14,7 +14,7 @@ import numpy as np
 from femoat.contact import _checks
 from femoat.contact.history import H_DMAX
 from femoat.contact.spec import KernelFamily, LawSpec
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 K1, K2, DELTA_Y = 0, 1, 2
 N_PARAMS = 3

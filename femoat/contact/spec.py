@@ -11,7 +11,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from femoat.jit import Kernel
+from femoat.compilation.jit import Kernel
 
 
 @dataclass(frozen=True)
@@ -56,7 +56,7 @@ class KernelFamily:
             kernel = getattr(self, role)
             if not (isinstance(kernel, Kernel) or (role == "commit" and kernel is None)):
                 raise ValueError(f"{role} = {kernel!r}: must be a kernel decorated with "
-                                 "femoat.jit.njit" + (" or None." if role == "commit" else "."))
+                                 "femoat.compilation.jit.njit" + (" or None." if role == "commit" else "."))
         if not (isinstance(self.n_params, int) and self.n_params >= 1):
             raise ValueError(f"n_params = {self.n_params!r}: must be an integer >= 1.")
 

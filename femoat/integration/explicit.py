@@ -31,21 +31,11 @@ driver's :func:`~femoat.integration.kernel._step_end`).
 Units: kip, in, s.
 """
 
-from pathlib import Path
-
 import numpy as np
 
-from femoat.jit import njit
-from femoat.numba_cache import drop_stale_cache
-
-_PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [_PKG / "integration" / "forces.py",
-                            _PKG / "integration" / "options.py",
-                            *sorted((_PKG / "contact").glob("*.py")),
-                            *sorted((_PKG / "structure" / "materials").glob("*.py"))])
-
-from femoat.integration.forces import _internal_force  # noqa: E402
-from femoat.integration.options import E_INPUT, E_VISCOUS, F_RTOL, I_N_EXPLICIT  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.integration.forces import _internal_force
+from femoat.integration.options import E_INPUT, E_VISCOUS, F_RTOL, I_N_EXPLICIT
 
 # ---- the Dormand-Prince 5(4) tableau -------------------------------------------------------
 

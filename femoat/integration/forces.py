@@ -6,19 +6,11 @@ explicit Runge-Kutta step of the open phase).
 Units: kip, in, s.
 """
 
-from pathlib import Path
-
 import numpy as np
 
-from femoat.jit import njit
-from femoat.numba_cache import drop_stale_cache
-
-_PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [*sorted((_PKG / "contact").glob("*.py")),
-                            *sorted((_PKG / "structure" / "materials").glob("*.py"))])
-
-from femoat.contact.kernels import step_force  # noqa: E402
-from femoat.structure.materials.kernels import material_trial  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.contact.kernels import step_force
+from femoat.structure.materials.kernels import material_trial
 
 
 @njit(cache=True)

@@ -37,40 +37,30 @@ inside a step shortens the step until it ends within gap_tol of δ = 0, where th
 starts (capturing δ̇₀) or ends.
 """
 
-from pathlib import Path
-
 import numpy as np
-from femoat.jit import njit
-
-from femoat.numba_cache import drop_stale_cache
-
-_PKG = Path(__file__).resolve().parent.parent
-drop_stale_cache(__file__, [*sorted((_PKG / "integration").glob("*.py")),
-                            *sorted((_PKG / "contact").glob("*.py")),
-                            *sorted((_PKG / "structure" / "materials").glob("*.py"))])
-
-from femoat.contact.kernels import (  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.contact.kernels import (
     contact_closure,
     contact_force,
     recorded_force,
     step_commit,
 )
-from femoat.integration.forces import (  # noqa: E402, F401  (ground_accel, internal_force: entry points)
+from femoat.integration.forces import (  # noqa: F401  (ground_accel, internal_force: entry points)
     _internal_force,
     _solve_dense,
     ground_accel,
     internal_force,
 )
-from femoat.integration import explicit  # noqa: E402
-from femoat.integration.limits import (  # noqa: E402
+from femoat.integration import explicit
+from femoat.integration.limits import (
     CRITERION_EXCEEDED,
     RUNAWAY_EXCEEDED,
     check_limits,
 )
-from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: E402, F401
-from femoat.structure.materials.kernels import material_commit, material_trial  # noqa: E402
+from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: F401
+from femoat.structure.materials.kernels import material_commit, material_trial
 
-from femoat.integration.options import (  # noqa: E402, F401  (the option slots, one home)
+from femoat.integration.options import (  # noqa: F401  (the option slots, one home)
     BUFFER_FULL,
     DONE,
     E_INPUT,

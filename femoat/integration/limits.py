@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 # quantity codes (the compiled dispatcher branches on them)
 ELEMENT_DEFORMATION, WALL_DISPLACEMENT, CONTACT_FORCE, DISPLACEMENT, VELOCITY, \

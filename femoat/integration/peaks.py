@@ -22,16 +22,10 @@ indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g)
 ``state.pk_n[0]`` how many.
 """
 
-from pathlib import Path
-
 import numpy as np
 
-from femoat.jit import njit
-from femoat.numba_cache import drop_stale_cache
-
-drop_stale_cache(__file__, [Path(__file__).resolve().parent / "options.py"])
-
-from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
 
 
 def size(ns, nc):

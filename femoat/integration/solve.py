@@ -84,7 +84,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         walls are then uncoupled linear oscillators). False solves the full system every step
         (for measuring what the lazy path saves).
     backend : str
-        "auto" (the ahead-of-time compiled kernels of :mod:`femoat.aot` when built, else numba's
+        "auto" (the ahead-of-time compiled kernels of
+        :mod:`femoat.compilation.aot` when built, else numba's
         JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
     limits : sequence of Limit or None
         Limit states checked after every accepted step (:mod:`femoat.integration.limits`):

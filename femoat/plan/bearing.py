@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 from femoat.structure.materials.friction_pendulum import N_PARAMS, FrictionPendulum
 
 N_STATE = 6

@@ -11,7 +11,7 @@
   is rerun one run per task, and the run that still fails is stored with status 'error'.
   Each finished task's rows are written at once, so an interruption (Ctrl-C, a killed worker
   or client) loses at most the tasks in flight.
-* Workers use the ahead-of-time kernels (:mod:`femoat.aot`), built once in the client if
+* Workers use the ahead-of-time kernels (:mod:`femoat.compilation.aot`), built once in the client if
   missing (about 45 s, once per machine); without them they fall back to numba's JIT.
 * On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
   path (their samples are checked against the definition).
@@ -131,9 +131,9 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
 
 def _kernels(stream):
     """Build the ahead-of-time kernels once (client side) if missing; say which are used."""
-    from femoat import aot
+    from femoat.compilation import aot, aot_build
 
-    aot.ensure(report=lambda m: stream.write(m + "\n"))
+    aot_build.ensure(report=lambda m: stream.write(m + "\n"))
     if aot.load() is not None:
         return "aot"
     stream.write("femoat suite: using numba's JIT kernels (the ahead-of-time module is switched "
@@ -142,7 +142,7 @@ def _kernels(stream):
 
 
 def _worker_kernels():
-    from femoat import aot
+    from femoat.compilation import aot
 
     return "aot" if aot.load() is not None else "jit"
 

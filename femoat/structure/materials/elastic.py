@@ -7,7 +7,7 @@ stored energy k·u²/2 can be reported from the state alone.
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 from femoat.structure.materials import _checks
 from femoat.structure.materials.codes import ELASTIC

@@ -96,7 +96,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.jit import njit
+from femoat.compilation.jit import njit
 
 from femoat.structure.materials import _checks
 from femoat.structure.materials.codes import IMK

@@ -15,17 +15,9 @@ the elastic range). Every material has a params array ``p`` and a committed stat
 Nothing here allocates.
 """
 
-from pathlib import Path
-
 import numpy as np
-from femoat.jit import njit
-
-from femoat.numba_cache import drop_stale_cache
-
-# the dispatchers below inline the kernels of the sibling modules (numba's cache does not see it)
-drop_stale_cache(__file__, sorted(Path(__file__).resolve().parent.glob("*.py")))
-
-from femoat.structure.materials import bilinear, elastic, friction_pendulum, imk  # noqa: E402
+from femoat.compilation.jit import njit
+from femoat.structure.materials import bilinear, elastic, friction_pendulum, imk
 from femoat.structure.materials.codes import BILINEAR, ELASTIC, FRICTION_PENDULUM, IMK
 from femoat.structure.materials.bilinear import bilinear_commit, bilinear_energy, bilinear_trial
 from femoat.structure.materials.elastic import elastic_commit, elastic_energy, elastic_trial
