@@ -16,10 +16,11 @@ MODEL_TABLES = ("building", "walls", "solver", "collapse")
 def allowed_keys():
     """{table path: allowed keys} of the model tables (from femoat.scenario and the materials)."""
     from femoat import scenario
-    from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+    from femoat.scenario.building import STORY_MODELS
+    from femoat.structure.materials import FrictionPendulum
 
     known = {k: set(v) for k, v in scenario.KEYS.items() if k.split(".")[0] in MODEL_TABLES}
-    known["building.story"] = {f.name for m in (Elastic, Bilinear, IMKBilinear)
+    known["building.story"] = {f.name for m in STORY_MODELS.values()
                                for f in dataclasses.fields(m)} | {"k0"}
     known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}
     return known
