@@ -118,3 +118,20 @@ def test_a_bad_column_row_is_refused_by_name(kwargs, message):
     with pytest.raises(ValueError, match="column peak_roof") as err:
         cols.Column(**{**base, **kwargs})
     assert message in str(err.value)
+
+
+def test_a_run_ended_by_a_runaway_bound_is_a_collapse():
+    # A suite whose criteria allow more than the runaway bounds (e.g. drift_ratio = 2) has runs
+    # that end at a runaway bound with no criterion reached (RunResult.runaway set, collapse
+    # "collapsed" False): the building had collapsed all the same, and its row says so.
+    from types import SimpleNamespace
+
+    status, collapsed = cols.column_of("status"), cols.column_of("collapsed")
+    quiet = SimpleNamespace(collapse={"collapsed": False}, runaway=None)
+    ran_away = SimpleNamespace(collapse={"collapsed": False},
+                               runaway=dict(time=20.78, element="story1", bound=156.0,
+                                            reason="drift of one story height"))
+    reached = SimpleNamespace(collapse={"collapsed": True}, runaway=None)
+    assert (status.extract(quiet), collapsed.extract(quiet)) == ("ok", False)
+    assert (status.extract(ran_away), collapsed.extract(ran_away)) == ("collapsed", True)
+    assert (status.extract(reached), collapsed.extract(reached)) == ("collapsed", True)

@@ -101,6 +101,12 @@ def _sa(p):
     return None if sa is None else sa * p.factor
 
 
+def _collapsed(result):
+    """A criterion reached, or a runaway bound: a run whose criteria allow more than a story
+    drift of one story height ended there all the same, and its building had collapsed."""
+    return bool(result.collapse["collapsed"] or result.runaway is not None)
+
+
 def _criterion_time(result, c):
     t = result.collapse.get(c)
     return math.nan if t is None else float(t)
@@ -164,12 +170,14 @@ COLUMNS = (
     Column("{key}", None, "", lambda p, key: p.suite.combos[p.spec.var][key],
            "one column per varied key, named by its dotted key (e.g. walls.law), typed by its "
            "values", "variation", per="key"),
-    Column("status", "string", "", lambda r: "collapsed" if r.collapse["collapsed"] else "ok",
+    Column("status", "string", "", lambda r: "collapsed" if _collapsed(r) else "ok",
            "'ok', 'collapsed', 'solver_failure' or 'error'", "outcome"),
     Column("error", "string", "", lambda r: None,
            "why the run failed, naming the run (empty when it finished)", "outcome"),
-    Column("collapsed", "bool", "", lambda r: bool(r.collapse["collapsed"]),
-           "any collapse criterion reached", "outcome", failed=False),
+    Column("collapsed", "bool", "", _collapsed,
+           "any collapse criterion reached, or a runaway bound (a story drifted by its height, "
+           "the isolator by ten times its capacity: femoat.collapse) with criteria that allow "
+           "more", "outcome", failed=False),
     Column("collapse_{c}", "bool", "", lambda r, c: r.collapse.get(c) is not None,
            f"criterion c ({', '.join(CRITERIA)}: femoat.collapse) reached", "outcome",
            per="criterion", failed=False),
