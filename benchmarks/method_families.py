@@ -98,7 +98,6 @@ from scipy.linalg import expm, lu_factor, lu_solve
 from scipy.optimize import brentq
 
 from femoat.paper import paper_model, paper_motion
-from femoat.structure.building import initial_stiffness
 from femoat.structure.materials import FrictionPendulum
 from femoat.structure.pounding import PoundingModel
 from femoat.units import G
@@ -139,7 +138,7 @@ class Problem:
             if isinstance(mat, FrictionPendulum):
                 k = mat.W / mat.R + mat.mu * mat.W / D_SECANT
             else:
-                k = initial_stiffness(mat)
+                k = mat.initial_stiffness
             K[i, i] += k
             if j >= 0:
                 K[j, j] += k

@@ -66,7 +66,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
-    from femoat.compilation import aot_build
+    from femoat.compilation import aot, aot_build
     from femoat.suite import load_suite, load_table, run_suite
 
     aot_build.ensure()

@@ -8,7 +8,7 @@ kernels must give exactly the JIT's results. The build runs in a temporary cache
 
 import json
 import shutil
-from pathlib import Path
+
 
 import numpy as np
 import pytest

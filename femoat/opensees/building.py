@@ -52,7 +52,6 @@ import numpy as np
 from femoat.contact.laws import ContactLaw
 from femoat.opensees.available import import_opensees
 from femoat.opensees.single_impact import opensees_contact_material
-from femoat.structure.building import initial_stiffness
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
 from femoat.structure.pounding import PoundingModel
 from femoat.units import G
@@ -130,7 +129,7 @@ def opensees_commands(model, motion):
     for k, story in enumerate(b.stories):
         spring = _story_material(story)
         cmds.append(("uniaxialMaterial", spring[0], mat, *spring[1:]))
-        c = beta * initial_stiffness(story)
+        c = beta * story.initial_stiffness
         if c > 0.0:
             cmds += [("uniaxialMaterial", "Elastic", mat + 1, 0.0, c),
                      ("uniaxialMaterial", "Parallel", mat + 2, mat, mat + 1)]

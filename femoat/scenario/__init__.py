@@ -38,7 +38,8 @@ Relative paths are relative to the scenario file. The tables and their keys (:da
 ``[solver]`` an :class:`~femoat.integration.settings.Integrator`: method ("dp5": fifth order
     while the gaps are open, Newmark in contact; "newmark": Newmark/HHT-α throughout), rtol,
     alpha, max_step [s] (left out: the record's sample interval), min_step [s], newton_tol,
-    max_newton, contact_steps, record_every.
+    max_newton, contact_steps, record_every, record_budget [bytes] (the recorder's memory
+    ceiling: a run that would outgrow it ends with a named error).
 ``[collapse]`` optional, limit states checked every step: a
     :class:`~femoat.collapse.CollapseCriteria`, drift_ratio [-], isolator (the isolator beyond
     isolator_capacity), wall_displacement [in], wall_force [kip], stop (end the run at the

@@ -9,7 +9,9 @@ from femoat.integration.settings import METHODS, Integrator
 from femoat.scenario.reading import check_keys, field_defaults, naming, numeric_table
 
 KEYS = tuple(f.name for f in dataclasses.fields(Integrator))
-COLLAPSE_KEYS = tuple(f.name for f in dataclasses.fields(CollapseCriteria))
+COLLAPSE_KEYS = tuple(f.name for f in dataclasses.fields(CollapseCriteria) if f.name != "extra")
+"""The ``[collapse]`` keys: the built-in criteria and ``stop``; ``extra`` (criteria defined in
+Python, :mod:`femoat.collapse`) has no form in a file."""
 
 
 def defaults():

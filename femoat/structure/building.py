@@ -19,7 +19,7 @@ values are femoat's, and every one is a parameter):
 import math
 from dataclasses import dataclass, field
 
-from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
 
 
 DEFAULT_STORY_HEIGHT = 39.0
@@ -28,18 +28,6 @@ DEFAULT_STORY_HEIGHT = 39.0
 
 def _default_stories():
     return (Bilinear(), Bilinear(), Bilinear())
-
-
-def initial_stiffness(material):
-    """Initial stiffness [kip/in] of a story material."""
-    if isinstance(material, Elastic):
-        return material.k
-    if isinstance(material, Bilinear):
-        return material.k0
-    if isinstance(material, IMKBilinear):
-        return material.K0
-    raise ValueError(f"stories: {type(material).__name__} is not a story material "
-                     "(use Elastic, Bilinear or IMKBilinear).")
 
 
 @dataclass(frozen=True)
@@ -93,8 +81,10 @@ class Building:
                 f"stories: {len(self.stories)} story springs for {len(self.floor_weights)} floors; "
                 "give one story material per floor."
             )
-        for s in self.stories:
-            initial_stiffness(s)
+        for s in self.stories:  # a story material answers its initial stiffness (β·k0 dashpots)
+            if not isinstance(getattr(type(s), "initial_stiffness", None), property):
+                raise ValueError(f"stories: {type(s).__name__} is not a story material "
+                                 "(use Elastic, Bilinear or IMKBilinear).")
         if self.isolator is not None and not isinstance(self.isolator, (FrictionPendulum, Elastic)):
             raise ValueError("isolator must be a FrictionPendulum, an Elastic spring or None.")
         if not (math.isfinite(self.story_damping_ratio) and self.story_damping_ratio >= 0):

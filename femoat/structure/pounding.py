@@ -14,7 +14,7 @@ import numpy as np
 
 from femoat.contact.kernels import N_HISTORY, N_PARAMS
 from femoat.contact.laws import ContactLaw
-from femoat.structure.building import Building, initial_stiffness
+from femoat.structure.building import Building
 from femoat.structure.roles import ISOLATOR, STORY, Role
 from femoat.units import G
 from femoat.walls.modal import ModalWall
@@ -103,7 +103,7 @@ class PoundingModel:
         # story dashpots c = β·k0 between floor k and the one below
         beta = b.story_damping_beta
         for k, mat in enumerate(b.stories):
-            c = beta * initial_stiffness(mat)
+            c = beta * mat.initial_stiffness
             i, j = k + 1, k
             C[i, i] += c
             C[j, j] += c

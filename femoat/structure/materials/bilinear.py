@@ -76,6 +76,11 @@ class Bilinear:
         return self.Fy / self.k0
 
     @property
+    def initial_stiffness(self) -> float:
+        """Initial (elastic) stiffness [kip/in]: k0; a story's dashpot is β times it."""
+        return self.k0
+
+    @property
     def yield_deformation(self) -> float:
         """Deformation at first yield [in]: u_y = Fy/k0."""
         return self.uy

@@ -49,6 +49,11 @@ class Elastic:
     code = ELASTIC
 
     @property
+    def initial_stiffness(self) -> float:
+        """Initial (elastic) stiffness [kip/in]: the spring's k; a story's dashpot is β times it."""
+        return self.k
+
+    @property
     def yield_deformation(self) -> None:
         """None: an elastic spring never yields."""
         return None

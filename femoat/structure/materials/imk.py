@@ -321,6 +321,11 @@ class IMKBilinear:
         return self.My / self.K0
 
     @property
+    def initial_stiffness(self) -> float:
+        """Initial (elastic) stiffness [kip/in]: K0; a story's dashpot is β times it."""
+        return self.K0
+
+    @property
     def yield_deformation(self) -> float:
         """Deformation at first yield [in]: u_y = My/K0."""
         return self.uy
