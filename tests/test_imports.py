@@ -13,7 +13,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "femoat"
 
 LAYERS = [
     # 0 foundations: units, files, compiled-code plumbing, records
-    ("femoat", "femoat.units", "femoat.atomic", "femoat.compilation",
+    ("femoat", "femoat.units", "femoat.checks", "femoat.atomic", "femoat.compilation",
      "femoat.dense_peaks", "femoat.ground_motions"),
     # 1 constitutive laws: contact laws, structural materials
     ("femoat.contact", "femoat.structure.materials"),

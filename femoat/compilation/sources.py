@@ -25,8 +25,8 @@ from femoat.atomic import write_text
 PACKAGE = Path(__file__).resolve().parents[1]
 """femoat's package folder (the default root of every scope)."""
 
-KERNELS = ("compilation/jit.py", "contact", "integration", "plan", "structure/materials",
-           "units.py")
+KERNELS = ("checks.py", "compilation/jit.py", "contact", "integration", "plan",
+           "structure/materials", "units.py")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 
 NOT_RESULTS = ("commands", "plotting", "render", "opensees", "suite")

@@ -9,10 +9,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.contact.hertz import K_H, hertz_energy
 from femoat.contact.spec import Bracket, KernelFamily, LawSpec
-from femoat.compilation.jit import njit
 
 XI_J, M_EFF = 1, 2
 N_PARAMS = 3

@@ -10,9 +10,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact import _checks
-from femoat.contact.spec import Bracket, KernelFamily, LawSpec
+from femoat import checks as _checks
 from femoat.compilation.jit import njit
+from femoat.contact.spec import Bracket, KernelFamily, LawSpec
 
 K_EFF, C_EFF, TENSION = 0, 1, 2
 N_PARAMS = 3

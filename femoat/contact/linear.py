@@ -7,9 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from femoat.contact import _checks
-from femoat.contact.spec import KernelFamily, LawSpec
+from femoat import checks as _checks
 from femoat.compilation.jit import njit
+from femoat.contact.spec import KernelFamily, LawSpec
 
 K_EFF = 0
 N_PARAMS = 1

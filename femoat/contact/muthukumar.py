@@ -11,10 +11,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from femoat.contact import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.contact.history import H_DMAX
 from femoat.contact.spec import KernelFamily, LawSpec
-from femoat.compilation.jit import njit
 
 K1, K2, DELTA_Y = 0, 1, 2
 N_PARAMS = 3

@@ -11,9 +11,9 @@ Recoverable energy: f_c²/(2·k0), the energy released by elastic unloading to z
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.compilation.jit import njit
 
-from femoat.structure.materials import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.structure.materials.codes import BILINEAR
 
 N_PARAMS = 3

@@ -7,9 +7,9 @@ stored energy k·u²/2 can be reported from the state alone.
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.compilation.jit import njit
 
-from femoat.structure.materials import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.structure.materials.codes import ELASTIC
 
 N_PARAMS = 1

@@ -28,9 +28,9 @@ committed velocity.
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.compilation.jit import njit
 
-from femoat.structure.materials import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.structure.materials.codes import FRICTION_PENDULUM
 
 N_PARAMS = 7

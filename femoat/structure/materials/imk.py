@@ -96,9 +96,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from femoat.compilation.jit import njit
 
-from femoat.structure.materials import _checks
+from femoat import checks as _checks
+from femoat.compilation.jit import njit
 from femoat.structure.materials.codes import IMK
 
 N_PARAMS = 10

@@ -16,6 +16,7 @@ Nothing here allocates.
 """
 
 import numpy as np
+
 from femoat.compilation.jit import njit
 from femoat.structure.materials import bilinear, elastic, friction_pendulum, imk
 from femoat.structure.materials.codes import BILINEAR, ELASTIC, FRICTION_PENDULUM, IMK

@@ -1,4 +1,5 @@
-"""Validation helpers: every message names the parameter, its unit and the accepted range."""
+"""Validation of physical parameters, shared by the contact laws and the materials: every
+message names the parameter, its unit and the accepted range."""
 
 import math
 
@@ -29,3 +30,20 @@ def in_range(name, value, unit, lo, hi, lo_open=False, hi_open=False):
         left = "(" if lo_open else "["
         right = ")" if hi_open else "]"
         raise ValueError(f"{name} = {value!r} {unit}: must lie in {left}{lo}, {hi}{right}.")
+
+
+def non_negative(name, value, unit):
+    finite(name, value, unit)
+    if value < 0.0:
+        raise ValueError(f"{name} = {value!r} {unit}: must be >= 0.")
+
+
+def flag(name, value):
+    if not isinstance(value, bool):
+        raise ValueError(f"{name} = {value!r}: must be True or False.")
+
+
+def restitution(e):
+    """A coefficient of restitution e in (0, 1], the argument of every closed form."""
+    if not (isinstance(e, (int, float)) and math.isfinite(e) and 0 < e <= 1):
+        raise ValueError(f"e = {e!r} is invalid: the coefficient of restitution must be in (0, 1].")
