@@ -92,7 +92,7 @@ class PlanBuilding:
                 try:
                     initial_stiffness(mat)
                 except ValueError as exc:
-                    raise ValueError(f"{key}: {exc}") from None
+                    raise ValueError(f"{key}: {str(exc).removeprefix('stories: ')}") from None
         for axis in AXES:  # the other parameters: checked (and named) as the 1D Building does
             self.along(axis)
 
