@@ -25,6 +25,7 @@ from femoat.structure.materials import Elastic
 from femoat.structure.pounding import PoundingModel
 from femoat.walls import ModalWall, wall_preset
 
+
 def first_seconds(gm, seconds, factor=1.0):
     n = int(round(seconds / gm.dt)) + 1
     return GroundMotion(factor * gm.accel_g[:n], gm.dt, name=gm.name)

@@ -113,8 +113,8 @@ def test_bad_moats_are_named():
 
 
 @pytest.mark.parametrize(("kwargs", "message"), [
-    ({"isolator": FrictionPendulum()}, "FrictionPendulum is the 1D bearing; in plan use "
-                                       "femoat.plan.BidirectionalFrictionPendulum"),
+    ({"isolator": FrictionPendulum()},
+     "FrictionPendulum is the 1D bearing; in plan use femoat.plan.BidirectionalFrictionPendulum"),
     ({"isolator": Bilinear()}, "isolator must be a BidirectionalFrictionPendulum"),
     ({"stories_y": (Bilinear(),) * 2}, "stories_y: 2 story springs for 3 floors"),
     ({"stories_x": (Bilinear(), Bilinear(), FrictionPendulum())}, "stories_x: FrictionPendulum"),
