@@ -1,0 +1,339 @@
+"""The OpenSees twin in 3D of a plan model (:class:`femoat.plan.PlanModel`) under a record pair.
+
+:func:`opensees_plan_run` builds the model in openseespy, runs it at a fixed step and returns
+its histories; :func:`opensees_plan_commands` returns the model as a list of openseespy calls.
+It is :mod:`femoat.opensees.building` (the 1D twin: its story materials, dashpots, contact-law
+chains and Newmark set-up) with every element acting along a plan direction.
+
+OpenSees model (written once here)
+----------------------------------
+* ``-ndm 3 -ndf 6``; every node's unused DOFs fixed: floors move in x, y (DOFs 1, 2); the base
+  mat in x, y and, under a friction pendulum, z (the bearing's axial DOF, massless); a wall
+  node along its normal only. Displacements are relative to the ground; two
+  ``UniformExcitation`` patterns (directions 1 and 2, ``Path`` series of the pair's applied
+  components a_x, a_y [in/s²] at its dt, zero after the last sample) load every mass.
+* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; ``_WALL_NODE + i`` for the
+  i-th wall of ``model.walls`` (order +x, −x, +y, −y). A wall node's displacement along its
+  axis is sign·q, q positive away from the building (sign +1 for +x and +y).
+* Isolator, ground → base mat: the bidirectional friction pendulum is ``flatSliderBearing``
+  (``Coulomb`` friction μ, kInit = μW/u_y, a stiff axial material, rotations and torsion
+  elastic and held) in parallel with a ``zeroLength`` W/R spring in x and y; the normal force
+  N = W comes from a static gravity step (load −W on the base mat's z) held constant
+  (``loadConst``) before the transient. Along one axis the bearing's circular Coulomb rule is
+  the 1D twin's ``ElasticPP`` (μW/u_y, u_y) exactly. An Elastic isolator is a ``zeroLength``
+  spring in x and y.
+* Story k, floor k−1 → floor k: one ``zeroLength`` with two materials (``-dir 1 2``), each the
+  1D twin's story material in ``Parallel`` with its dashpot ``Elastic 0 c`` (c = β·k0) and, with
+  P-Delta, ``Elastic −P/h`` (the linear geometric stiffness femoat adds to K).
+* Wall i: spring ``Elastic K1 C_imp`` ground → wall node, and the contact law's twin
+  (:func:`~femoat.opensees.single_impact.opensees_contact_material`, compression convention)
+  base → wall for a + side, wall → base for a − side, both along the wall's axis.
+* Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
+  Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
+
+No twin (refused with a sentence): modal walls, wall friction (μ_w > 0), velocity-dependent
+bearing friction (``mu_fast``).
+"""
+
+import math
+import os
+import tempfile
+import time as _time
+
+import numpy as np
+
+from femoat.ground_motions.pair import RecordPair
+from femoat.opensees.available import import_opensees
+from femoat.opensees.building import (
+    OpenSeesFailure,
+    _analysis_commands,
+    _captured_stderr,
+    _read_binary,
+    _story_material,
+)
+from femoat.opensees.single_impact import opensees_contact_material
+from femoat.plan.bearing import BidirectionalFrictionPendulum
+from femoat.plan.model import PlanModel
+from femoat.structure.building import initial_stiffness
+from femoat.units import G
+from femoat.walls.sdof import SdofWall
+
+_GROUND, _BASE, _WALL_NODE = 1, 2, 100
+_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _WALL_ELE, _CONTACT_ELE = 1, 2, 10, 100, 200
+_GRAVITY, _FRICTION = 10, 1
+_AXIAL_STIFFNESS = 1.0e6
+"""Axial (and rotational) stiffness of the flat slider [kip/in]: it only carries N = W."""
+
+
+def _check(model, pair):
+    if not isinstance(model, PlanModel):
+        raise ValueError("model must be a PlanModel (femoat.plan).")
+    if not isinstance(pair, RecordPair):
+        raise ValueError("pair must be a RecordPair (femoat.ground_motions).")
+    iso = model.building.isolator
+    if isinstance(iso, BidirectionalFrictionPendulum) and iso.mu_fast is not None:
+        raise ValueError("isolator: a velocity-dependent friction coefficient (mu_fast) has no "
+                         "exact OpenSees twin here (Coulomb friction is constant-μ); set "
+                         "mu_fast=None to cross-check.")
+    for w in model.walls:
+        if not isinstance(w.wall, SdofWall):
+            raise ValueError(f"wall {w.side}: the OpenSees twin takes SDOF walls only "
+                             "(SdofWall); reduce a finite-element wall to its first mode to "
+                             "cross-check it.")
+        if w.friction != 0.0:
+            raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no OpenSees twin "
+                             "here (the Masroor chain acts along the normal only); set "
+                             "friction=0.0 to cross-check.")
+
+
+def _story_top(mat, dashpot, geometric, tag):
+    """Commands for a story material with its dashpot and P-Delta spring in Parallel; returns
+    (commands, tag of the top material, next free tag)."""
+    spring = _story_material(mat)
+    cmds, parts = [("uniaxialMaterial", spring[0], tag, *spring[1:])], [tag]
+    for k, c in ((0.0, dashpot), (geometric, 0.0)):
+        if k != 0.0 or c != 0.0:
+            parts.append(tag + len(parts))
+            cmds.append(("uniaxialMaterial", "Elastic", parts[-1], k, c))
+    if len(parts) == 1:
+        return cmds, tag, tag + 1
+    top = tag + len(parts)
+    cmds.append(("uniaxialMaterial", "Parallel", top, *parts))
+    return cmds, top, top + 1
+
+
+def _nodes(model):
+    """The twin's (node, OpenSees DOF, sign) of each femoat DOF, in layout order."""
+    rows = []
+    for k in range(len(model.building.floor_weights) + 1):
+        rows += [(_BASE + k, 1, 1.0), (_BASE + k, 2, 1.0)]
+    for i, w in enumerate(model.walls):
+        rows.append((_WALL_NODE + i, w.axis + 1, float(w.sign)))
+    return rows
+
+
+def opensees_plan_commands(model, pair):
+    """The openseespy calls that build ``model`` under ``pair``: a list of ``(function name,
+    *args)`` tuples: the model, the gravity step (under a friction pendulum, ending with
+    ``loadConst`` and ``wipeAnalysis``) and the two excitation patterns; no transient analysis.
+
+    Raises ValueError for what has no OpenSees twin (module docstring).
+    """
+    _check(model, pair)
+    b = model.building
+    iso = b.isolator
+    slider = isinstance(iso, BidirectionalFrictionPendulum)
+    cmds = [("wipe",), ("model", "basic", "-ndm", 3, "-ndf", 6),
+            ("node", _GROUND, 0.0, 0.0, 0.0), ("fix", _GROUND, 1, 1, 1, 1, 1, 1)]
+    for k, w in enumerate([b.base_weight, *b.floor_weights]):
+        z_free = 0 if (k == 0 and slider) else 1
+        cmds += [("node", _BASE + k, 0.0, 0.0, 0.0),
+                 ("fix", _BASE + k, 0, 0, z_free, 1, 1, 1),
+                 ("mass", _BASE + k, w / G, w / G, 0.0, 0.0, 0.0, 0.0)]
+    mat = 1
+    if slider:
+        cmds += [("frictionModel", "Coulomb", _FRICTION, iso.mu),
+                 ("uniaxialMaterial", "Elastic", mat, _AXIAL_STIFFNESS),
+                 ("uniaxialMaterial", "Elastic", mat + 1, iso.W / iso.R),
+                 # local x along global z (the bearing's axis), local y along global x: the
+                 # shear directions y, z are the global x, y
+                 ("element", "flatSliderBearing", _BEARING_ELE, _GROUND, _BASE, _FRICTION,
+                  iso.mu * iso.W / iso.u_y, "-P", mat, "-T", mat, "-My", mat, "-Mz", mat,
+                  "-orient", 0.0, 0.0, 1.0, 1.0, 0.0, 0.0),
+                 ("element", "zeroLength", _ISO_SPRING_ELE, _GROUND, _BASE,
+                  "-mat", mat + 1, mat + 1, "-dir", 1, 2)]
+        mat += 2
+    elif iso is not None:  # Elastic
+        cmds += [("uniaxialMaterial", "Elastic", mat, iso.k),
+                 ("element", "zeroLength", _ISO_SPRING_ELE, _GROUND, _BASE,
+                  "-mat", mat, mat, "-dir", 1, 2)]
+        mat += 1
+    beta, geometric = b.story_damping_beta, b.geometric_stiffnesses()
+    for k in range(len(b.floor_weights)):
+        tops = []
+        for stories in (b.stories_x, b.stories_y):
+            story = stories[k]
+            made, top, mat = _story_top(story, beta * initial_stiffness(story), geometric[k], mat)
+            cmds += made
+            tops.append(top)
+        cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,
+                     "-mat", *tops, "-dir", 1, 2))
+    for i, w in enumerate(model.walls):
+        node, d = _WALL_NODE + i, w.axis + 1
+        masses = [0.0] * 6
+        masses[w.axis] = w.wall.mass
+        fixed = [1] * 6
+        fixed[w.axis] = 0
+        cmds += [("node", node, 0.0, 0.0, 0.0), ("fix", node, *fixed), ("mass", node, *masses),
+                 ("uniaxialMaterial", "Elastic", mat, w.wall.stiffness, w.wall.damping),
+                 ("element", "zeroLength", _WALL_ELE + i, _GROUND, node, "-mat", mat, "-dir", d)]
+        contact = opensees_contact_material(w.law, w.gap)
+        ni, nj = (_BASE, node) if w.sign > 0 else (node, _BASE)
+        cmds += [("uniaxialMaterial", contact[0], mat + 1, *contact[1:]),
+                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat + 1, "-dir", d)]
+        mat += 2
+    if slider:  # N = W on the slider: a static gravity step, then held constant
+        cmds += [("timeSeries", "Constant", _GRAVITY), ("pattern", "Plain", _GRAVITY, _GRAVITY),
+                 ("load", _BASE, 0.0, 0.0, -iso.W, 0.0, 0.0, 0.0),
+                 ("constraints", "Plain"), ("numberer", "Plain"), ("system", "BandGeneral"),
+                 ("test", "NormDispIncr", 1e-12, 20), ("algorithm", "Newton"),
+                 ("integrator", "LoadControl", 1.0), ("analysis", "Static"), ("analyze", 1),
+                 ("loadConst", "-time", 0.0), ("wipeAnalysis",)]
+    accel = np.asarray(pair.accel_g) * G
+    for d in (1, 2):
+        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values",
+                  *[float(a) for a in accel[d - 1]]),
+                 ("pattern", "UniformExcitation", d, d, "-accel", d)]
+    return cmds
+
+
+def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_iter=50):
+    """Run the OpenSees twin of ``model`` under ``pair`` at the fixed step ``dt``.
+
+    Replaces any model in the openseespy interpreter (``wipe`` before and after).
+
+    Parameters
+    ----------
+    model : PlanModel
+        SDOF walls without wall friction; a constant-μ friction pendulum, Elastic or no
+        isolator.
+    pair : RecordPair
+        The ground motion: its applied components (angle and scale included), x and y.
+    dt : float
+        Fixed time step [s], > 0.
+    duration : float or None
+        Analysis time [s]; default: the record plus 2 s, as :func:`femoat.run.run`.
+    v0 : array or None
+        Initial relative velocities [in/s] per femoat DOF (``model.dof_names()``).
+    tol : float
+        ``NormDispIncr`` tolerance [in] of the Newton iterations.
+    max_iter : int
+        Newton iterations per step before OpenSees gives up (then :class:`OpenSeesFailure`).
+
+    Returns
+    -------
+    dict
+        ``time`` [s] (t = n·dt, shape (steps + 1,)); ``base_displacement`` [in] (steps + 1, 2);
+        ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration`` [in/s²] absolute,
+        (steps + 1, floors + 1, 2), base mat first; ``wall_displacement`` [in] (away from the
+        building), ``contact_force`` [kip] (compression positive) and ``indentation`` [in],
+        each (steps + 1, walls); ``walls`` (the sides, in that column order);
+        ``bearing_normal_force`` [kip] (N after the gravity step; None without a slider);
+        ``peaks``: ``plan_base_displacement`` (largest |u| of the base mat) [in],
+        ``base_displacement`` (x, y) [in], ``drift`` (floors, 2) [in],
+        ``floor_acceleration`` (floors, 2) [g], and per wall ``impact_force`` [kip] (largest
+        sample) and ``impacts`` (closures); ``cpu_seconds`` (the ``analyze`` call); ``steps``;
+        ``dt``; ``commands``.
+
+    Raises
+    ------
+    OpenSeesFailure
+        Newton failed at a step, or the state went NaN/inf.
+    """
+    ops = import_opensees()
+    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
+        raise ValueError(f"dt = {dt!r} must be a positive time step [s].")
+    if duration is None:
+        duration = pair.duration + 2.0
+    if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
+        raise ValueError(f"duration = {duration!r} must be a positive time [s].")
+    cmds = opensees_plan_commands(model, pair)
+    packed = model.pack()
+    n = packed.n
+    v = np.zeros(n) if v0 is None else np.array(v0, dtype=float)
+    if v.shape != (n,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"v0 must be {n} finite velocities [in/s] ({model.dof_names()}).")
+    ag0 = np.asarray(pair.accel_g)[:, 0] * G
+    a = np.linalg.solve(packed.M, -packed.R @ ag0 - packed.C @ v)
+    n_steps = int(math.ceil(duration / dt - 1e-9))
+    log, normal = [], None
+    try:
+        with _captured_stderr(log):
+            for name, *args in cmds:
+                getattr(ops, name)(*args)
+            if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
+                normal = -ops.eleResponse(_BEARING_ELE, "basicForce")[0]
+            for (node, d, sign), vi, ai in zip(_nodes(model), v, a):
+                if vi != 0.0:
+                    ops.setNodeVel(node, d, float(sign * vi), "-commit")
+                ops.setNodeAccel(node, d, float(sign * ai), "-commit")
+            for name, *args in _analysis_commands(tol, max_iter):
+                getattr(ops, name)(*args)
+            hist = _step_loop(ops, model, n_steps, dt)
+    except OpenSeesFailure as exc:
+        tail = " ".join(" ".join(log).split()[-40:])
+        raise OpenSeesFailure(f"{exc} OpenSees said: {tail}", exc.kind, exc.time,
+                              exc.step) from None
+    finally:
+        ops.wipe()
+    return _summarise(hist, model, pair, dt, normal, cmds)
+
+
+def _step_loop(ops, model, n_steps, dt):
+    """``analyze(n_steps, dt)`` with binary recorders (as the 1D twin): displacements of every
+    node in x and y, accelerations of the building's nodes, contact forces."""
+    nf = len(model.building.floor_weights) + 1
+    nw = len(model.walls)
+    struct = [_BASE + k for k in range(nf)]
+    nodes = struct + [_WALL_NODE + i for i in range(nw)]
+    x0 = np.array([[ops.nodeDisp(nd, d) for d in (1, 2)] for nd in nodes]).reshape(-1)
+    a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
+    with tempfile.TemporaryDirectory(prefix="femoat_opensees_plan_") as folder:
+        paths = [os.path.join(folder, name) for name in ("disp.bin", "accel.bin", "force.bin")]
+        ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, 2, "disp")
+        ops.recorder("Node", "-binary", paths[1], "-node", *struct, "-dof", 1, 2, "accel")
+        if nw:
+            ops.recorder("Element", "-binary", paths[2], "-ele",
+                         *[_CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
+        cpu0 = _time.process_time()
+        status = ops.analyze(n_steps, dt)
+        ops.remove("recorders")  # flushes and closes the files
+        cpu = _time.process_time() - cpu0
+        disp = _read_binary(paths[0], 1 + 2 * len(nodes))
+        acc = _read_binary(paths[1], 2 * nf)
+        force = -_read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
+    m = min(disp.shape[0], acc.shape[0], force.shape[0])
+    x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
+    acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
+    f = np.vstack([np.zeros(nw), force[:m]])
+    bad = ~(np.all(np.isfinite(x), axis=(1, 2)) & np.all(np.isfinite(f), axis=1))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise OpenSeesFailure(f"OpenSees returned a non-finite state at step {k} "
+                              f"(t = {k * dt:.6g} s).", "nan", k * dt, k)
+    if status != 0 or m < n_steps:
+        raise OpenSeesFailure(
+            f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
+            f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
+            "[in]).", "diverged", (m + 1) * dt, m + 1)
+    return dict(x=x, acc=acc, f=f, cpu=cpu)
+
+
+def _summarise(hist, model, pair, dt, normal, cmds):
+    x, acc, f = hist["x"], hist["acc"], hist["f"]
+    nf = acc.shape[1]
+    t = np.arange(x.shape[0]) * dt
+    base = x[:, 0, :]
+    walls = np.column_stack([w.sign * x[:, nf + i, w.axis] for i, w in enumerate(model.walls)]) \
+        if model.walls else np.zeros((t.size, 0))
+    indent = np.column_stack([base @ np.array(w.normal) - w.gap - walls[:, i]
+                              for i, w in enumerate(model.walls)]) \
+        if model.walls else np.zeros((t.size, 0))
+    ag = np.array([np.interp(t, pair.time, row, right=0.0) for row in np.asarray(pair.accel_g)])
+    absacc = acc + (G * ag.T)[:, None, :]
+    closed = indent > 0.0
+    impacts = np.sum(closed & ~np.vstack([np.zeros((1, closed.shape[1]), bool), closed[:-1]]),
+                     axis=0)
+    peaks = dict(
+        plan_base_displacement=float(np.hypot(base[:, 0], base[:, 1]).max()),
+        base_displacement=np.abs(base).max(axis=0),
+        drift=np.abs(np.diff(x[:, :nf, :], axis=1)).max(axis=0),
+        floor_acceleration=np.abs(absacc[:, 1:, :]).max(axis=0) / G,
+        impact_force=np.maximum(f, 0.0).max(axis=0, initial=0.0) + 0.0,
+        impacts=impacts.astype(int),
+    )
+    return dict(time=t, base_displacement=base, floor_displacement=x[:, 1:nf, :],
+                acceleration=absacc, wall_displacement=walls, contact_force=f,
+                indentation=indent, walls=[w.side for w in model.walls],
+                bearing_normal_force=normal, peaks=peaks, cpu_seconds=hist["cpu"],
+                steps=int(t.size - 1), dt=float(dt), commands=cmds)

@@ -1,0 +1,150 @@
+"""The building in plan: a base mat and floors that translate in x and y, no torsion.
+
+Every floor (the base mat included) has two horizontal translations; floors do not rotate in
+plan (no torsion in issue 18: the centres of mass and stiffness coincide, so a plan model is two
+shear buildings, one per direction, coupled only by the isolator and the corner walls). The DOF
+layout keeps a column for a rotation per floor (:mod:`femoat.plan.model`).
+
+Stories: one 1D story material per floor and per direction (``stories_x``, ``stories_y``),
+uncoupled: a story's x spring sees only the x drift. Default: the paper's building
+(:class:`femoat.structure.building.Building`) in both directions. Story dashpots c = β·k0 per
+story and direction, one β = 2ξ/ω1 for both (ω1 = 2π/T1 with T1 = ``story_damping_period``: the
+damping matrix is β times the initial story stiffness in each direction). P-Delta, when on, adds
+the linear geometric stiffness −P_k/h_k of each story in x and in y, as the 1D Building does.
+
+The isolator is the bidirectional friction pendulum
+(:class:`~femoat.plan.bearing.BidirectionalFrictionPendulum`, friction coupled in plan), an
+:class:`~femoat.structure.materials.Elastic` spring (the same stiffness in x and y) or ``None``.
+"""
+
+import math
+from dataclasses import dataclass, field
+
+from femoat.plan.bearing import BidirectionalFrictionPendulum
+from femoat.structure.building import Building, initial_stiffness
+from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
+
+AXES = ("x", "y")
+
+
+def _paper_stories():
+    return (Bilinear(), Bilinear(), Bilinear())
+
+
+@dataclass(frozen=True)
+class PlanBuilding:
+    """A base-isolated shear building in plan (x, y translations per floor, no torsion).
+
+    Parameters
+    ----------
+    base_weight : float
+        Weight of the base mat [kip], > 0.
+    floor_weights : tuple of float
+        Floor weights [kip], bottom to top; empty for a bare base mat.
+    isolator : BidirectionalFrictionPendulum or Elastic or None
+        The isolation layer lumped into one element between base mat and ground; an Elastic
+        spring acts alike in x and y; ``None`` leaves the base mat free.
+    stories_x, stories_y : tuple of materials
+        One story material per floor (Elastic, Bilinear or IMKBilinear), bottom to top, for the
+        x and the y direction.
+    story_damping_ratio : float
+        Viscous damping ratio ξ [-] at ``story_damping_period`` (both directions).
+    story_damping_period : float
+        Fixed-base first period T1 [s] used for β = 2ξ/ω1.
+    story_heights : tuple of float or None
+        Story heights [in], bottom to top; None: 39.0 in per story (as the 1D Building).
+    p_delta : bool
+        Add each story's geometric stiffness −P_k/h_k in x and in y.
+    isolator_capacity : float
+        Displacement capacity of the isolator [in], measured in plan (|u| of the base mat).
+    """
+
+    base_weight: float = 10.0
+    floor_weights: tuple = (8.0, 8.0, 7.0)
+    isolator: object = field(default_factory=BidirectionalFrictionPendulum)
+    stories_x: tuple = field(default_factory=_paper_stories)
+    stories_y: tuple = field(default_factory=_paper_stories)
+    story_damping_ratio: float = 0.02
+    story_damping_period: float = 0.30
+    story_heights: tuple | None = None
+    p_delta: bool = False
+    isolator_capacity: float = 7.0
+
+    def __post_init__(self):
+        if isinstance(self.isolator, FrictionPendulum):
+            raise ValueError("isolator: a FrictionPendulum is the 1D bearing; in plan use "
+                             "femoat.plan.BidirectionalFrictionPendulum with the same parameters "
+                             "(friction coupled in plan).")
+        if self.isolator is not None and not isinstance(
+                self.isolator, (BidirectionalFrictionPendulum, Elastic)):
+            raise ValueError("isolator must be a BidirectionalFrictionPendulum, an Elastic spring "
+                             "or None.")
+        for axis in AXES:
+            key = f"stories_{axis}"
+            stories = getattr(self, key)
+            if not isinstance(stories, tuple):
+                raise ValueError(f"{key} must be a tuple of story materials, one per floor.")
+            if len(stories) != len(self.floor_weights):
+                raise ValueError(f"{key}: {len(stories)} story springs for "
+                                 f"{len(self.floor_weights)} floors; give one story material per "
+                                 "floor.")
+            for mat in stories:
+                try:
+                    initial_stiffness(mat)
+                except ValueError as exc:
+                    raise ValueError(f"{key}: {str(exc).removeprefix('stories: ')}") from None
+        for axis in AXES:  # the other parameters: checked (and named) as the 1D Building does
+            self.along(axis)
+
+    def along(self, axis):
+        """The 1D :class:`~femoat.structure.building.Building` along ``axis`` ("x" or "y"): the
+        stories of that direction, the isolator as its 1D bearing. Exactly this building when
+        the motion stays on that axis."""
+        if axis not in AXES:
+            raise ValueError(f"axis = {axis!r}: use 'x' or 'y'.")
+        iso = self.isolator
+        if isinstance(iso, BidirectionalFrictionPendulum):
+            iso = iso.uniaxial()
+        return Building(
+            base_weight=self.base_weight, floor_weights=tuple(self.floor_weights), isolator=iso,
+            stories=getattr(self, f"stories_{axis}"),
+            story_damping_ratio=self.story_damping_ratio,
+            story_damping_period=self.story_damping_period, story_heights=self.story_heights,
+            p_delta=self.p_delta, isolator_capacity=self.isolator_capacity)
+
+    @classmethod
+    def from_building(cls, building, stories_y=None):
+        """The plan building of a 1D ``building``: its stories in x (and in y unless
+        ``stories_y`` is given), its friction pendulum made bidirectional."""
+        if not isinstance(building, Building):
+            raise ValueError("building must be a femoat.structure.building.Building.")
+        iso = building.isolator
+        if isinstance(iso, FrictionPendulum):
+            iso = BidirectionalFrictionPendulum(W=iso.W, R=iso.R, u_y=iso.u_y, mu=iso.mu,
+                                                mu_fast=iso.mu_fast, a=iso.a, v_reg=iso.v_reg)
+        return cls(base_weight=building.base_weight, floor_weights=tuple(building.floor_weights),
+                   isolator=iso, stories_x=tuple(building.stories),
+                   stories_y=tuple(building.stories if stories_y is None else stories_y),
+                   story_damping_ratio=building.story_damping_ratio,
+                   story_damping_period=building.story_damping_period,
+                   story_heights=building.story_heights, p_delta=building.p_delta,
+                   isolator_capacity=building.isolator_capacity)
+
+    @property
+    def heights(self):
+        """Story heights [in], bottom to top."""
+        return self.along("x").heights
+
+    def geometric_stiffnesses(self):
+        """P-Delta stiffness of each story [kip/in], the same in x and y: −P_k/h_k, or zeros."""
+        return self.along("x").geometric_stiffnesses()
+
+    @property
+    def story_damping_beta(self):
+        """Stiffness-proportional factor β = 2ξ/ω1 [s], both directions."""
+        return 2.0 * self.story_damping_ratio * self.story_damping_period / (2.0 * math.pi)
+
+    @property
+    def total_weight(self):
+        """Weight above the isolators [kip]."""
+        return self.base_weight + sum(self.floor_weights)
