@@ -54,7 +54,6 @@ from femoat.opensees.building import (
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.model import PlanModel
-from femoat.structure.building import initial_stiffness
 from femoat.units import G
 from femoat.walls.sdof import SdofWall
 
@@ -153,7 +152,7 @@ def opensees_plan_commands(model, pair):
         tops = []
         for stories in (b.stories_x, b.stories_y):
             story = stories[k]
-            made, top, mat = _story_top(story, beta * initial_stiffness(story), geometric[k], mat)
+            made, top, mat = _story_top(story, beta * story.initial_stiffness, geometric[k], mat)
             cmds += made
             tops.append(top)
         cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,

@@ -21,7 +21,7 @@ import math
 from dataclasses import dataclass, field
 
 from femoat.plan.bearing import BidirectionalFrictionPendulum
-from femoat.structure.building import Building, initial_stiffness
+from femoat.structure.building import Building, check_story
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
 
 AXES = ("x", "y")
@@ -89,10 +89,7 @@ class PlanBuilding:
                                  f"{len(self.floor_weights)} floors; give one story material per "
                                  "floor.")
             for mat in stories:
-                try:
-                    initial_stiffness(mat)
-                except ValueError as exc:
-                    raise ValueError(f"{key}: {str(exc).removeprefix('stories: ')}") from None
+                check_story(mat, key)
         for axis in AXES:  # the other parameters: checked (and named) as the 1D Building does
             self.along(axis)
 

@@ -34,7 +34,6 @@ from femoat.contact.kernels import N_HISTORY, N_PARAMS
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.building import AXES, PlanBuilding
 from femoat.plan.moat import SIDES, PlanWall, rectangular_moat
-from femoat.structure.building import initial_stiffness
 from femoat.structure.pounding import PoundingModel, _stack, wall_modes
 from femoat.structure.roles import ISOLATOR, STORY, Role
 from femoat.units import G
@@ -150,7 +149,7 @@ class PlanModel:
         for a, axis in enumerate(AXES):
             for k, mat in enumerate(getattr(b, f"stories_{axis}")):
                 i, j = dofs[k + 1, a], dofs[k, a]
-                _add_spring(C, i, j, beta * initial_stiffness(mat))
+                _add_spring(C, i, j, beta * mat.initial_stiffness)
                 _add_spring(K, i, j, geometric[k])
                 elements.append((i, j, a, mat, Role(STORY, k + 1)))
         iso = b.isolator

@@ -30,6 +30,14 @@ def _default_stories():
     return (Bilinear(), Bilinear(), Bilinear())
 
 
+def check_story(material, where="stories"):
+    """Raise unless ``material`` can be a story spring: a story material answers its initial
+    stiffness [kip/in] (the story dashpot is β times it)."""
+    if not isinstance(getattr(type(material), "initial_stiffness", None), property):
+        raise ValueError(f"{where}: {type(material).__name__} is not a story material "
+                         "(use Elastic, Bilinear or IMKBilinear).")
+
+
 @dataclass(frozen=True)
 class Building:
     """A base-isolated shear building.
@@ -81,10 +89,8 @@ class Building:
                 f"stories: {len(self.stories)} story springs for {len(self.floor_weights)} floors; "
                 "give one story material per floor."
             )
-        for s in self.stories:  # a story material answers its initial stiffness (β·k0 dashpots)
-            if not isinstance(getattr(type(s), "initial_stiffness", None), property):
-                raise ValueError(f"stories: {type(s).__name__} is not a story material "
-                                 "(use Elastic, Bilinear or IMKBilinear).")
+        for s in self.stories:
+            check_story(s)
         if self.isolator is not None and not isinstance(self.isolator, (FrictionPendulum, Elastic)):
             raise ValueError("isolator must be a FrictionPendulum, an Elastic spring or None.")
         if not (math.isfinite(self.story_damping_ratio) and self.story_damping_ratio >= 0):
