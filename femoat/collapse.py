@@ -44,6 +44,11 @@ def _positive(name, x, unit):
                          "or omitted (no criterion).")
 
 
+def _bounded(x):
+    """A bound that is on: given and finite (``inf``, as in a scenario file, means none)."""
+    return x is not None and math.isfinite(x)
+
+
 @dataclass(frozen=True)
 class DriftRatio:
     """Every story: |drift| / story height above ``ratio`` [-]."""
@@ -110,14 +115,15 @@ class CollapseCriteria:
     ----------
     drift_ratio : float or None
         Story drift ratio limit [-] (0.10 by default, a common sidesway-collapse proxy); None
-        switches the criterion off.
+        (or ``inf``) switches the criterion off.
     isolator : bool
         Whether the isolator displacement capacity (``Building.isolator_capacity`` [in]) is a
         criterion.
     wall_displacement : float or None
-        Moat-wall displacement capacity at the impact point [in]; None: no criterion.
+        Moat-wall displacement capacity at the impact point [in]; None (or ``inf``): no
+        criterion.
     wall_force : float or None
-        Moat-wall contact-force capacity [kip]; None: no criterion.
+        Moat-wall contact-force capacity [kip]; None (or ``inf``): no criterion.
     stop : bool
         End the run at the first step beyond any criterion (nothing is computed that the answer
         does not need); False runs to the end and records the first time of each.
@@ -151,21 +157,21 @@ class CollapseCriteria:
             if not isinstance(name, str) or not callable(getattr(c, "limits", None)):
                 raise ValueError(f"collapse extra: {c!r} is not a criterion (it needs a name and "
                                  "limits(model, packed), see femoat.collapse).")
-            if name in names:
-                raise ValueError(f"collapse extra: a criterion named {name!r} is already there; "
-                                 "give it another name.")
+            if name in names or name in ("collapsed", "stopped"):
+                raise ValueError(f"collapse extra: a criterion named {name!r} is already there "
+                                 "(or is a key of the summary); give it another name.")
             names.append(name)
 
     def criteria(self):
         """The criteria that are on, built-in ones first."""
         out = []
-        if self.drift_ratio is not None:
+        if _bounded(self.drift_ratio):
             out.append(DriftRatio(self.drift_ratio))
         if self.isolator:
             out.append(IsolatorCapacity())
-        if self.wall_displacement is not None:
+        if _bounded(self.wall_displacement):
             out.append(WallDisplacement(self.wall_displacement))
-        if self.wall_force is not None:
+        if _bounded(self.wall_force):
             out.append(WallForce(self.wall_force))
         return (*out, *self.extra)
 

@@ -112,6 +112,22 @@ def test_limit_rows_and_extra_criteria_are_validated():
         CollapseCriteria(extra=(object(),))
     with pytest.raises(ValueError, match="'drift' is already there"):
         CollapseCriteria(extra=(_Named("drift"),))
+    for key in ("collapsed", "stopped"):  # the summary's own keys would overwrite its time
+        with pytest.raises(ValueError, match=f"'{key}' is already there"):
+            CollapseCriteria(extra=(_Named(key),))
+
+
+def test_an_infinite_bound_switches_a_criterion_off(plain):
+    # inf (as a scenario file may write it) means no criterion, as None does: the run is the
+    # unbounded one, bit for bit, and the summary has no time for it (it was a run-time error
+    # once limits became rows, which refuse an infinite bound)
+    model, motion, free = plain
+    off = CollapseCriteria(drift_ratio=math.inf, wall_displacement=math.inf,
+                           wall_force=math.inf, isolator=False)
+    assert off.criteria() == ()
+    r = run(model, motion, collapse=off)
+    assert np.array_equal(r.time, free.time) and np.array_equal(r.displacement, free.displacement)
+    assert not r.collapse["collapsed"] and r.collapse["drift"] is None
 
 
 @dataclass(frozen=True)

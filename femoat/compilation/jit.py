@@ -30,7 +30,7 @@ def njit(*args, **options):
     if args and callable(args[0]) and len(args) == 1 and not options:
         return Kernel(args[0], {})
     if args:
-        raise TypeError("femoat.jit.njit takes keyword options only (e.g. cache=True)")
+        raise TypeError("femoat.compilation.jit.njit takes keyword options only (e.g. cache=True)")
     return lambda func: Kernel(func, options)
 
 
