@@ -18,6 +18,16 @@ from femoat.plotting.plan_history import WALL_COLORS, check_history
 from femoat.plotting.style import pyplot
 
 
+def _peak(force):
+    """The largest force [kip], 0 without contact (never -0.0, which a twin's negated zero
+    would print)."""
+    return float(np.max(force, initial=0.0)) + 0.0
+
+
+def _count(n):
+    return f"{n} impact" if n == 1 else f"{n} impacts"
+
+
 def wall_segment(history, side):
     """The two ends [in] of wall ``side``'s line in the orbit plot: ((x0, y0), (x1, y1))."""
     r = history.reach()
@@ -51,8 +61,8 @@ def plot_plan_orbit(history, path):
         hit = contact[:, c]
         ax.plot(x[hit], y[hit], linestyle="none", marker="o", ms=3.5, color=color,
                 gid=f"impacts {side}",
-                label=f"{side} wall: gap {h.gaps[c]:g} in, {impacts[c]} impacts, "
-                      f"peak {h.wall_force[:, c].max(initial=0.0):.0f} kip")
+                label=f"{side} wall: gap {h.gaps[c]:g} in, {_count(impacts[c])}, "
+                      f"peak {_peak(h.wall_force[:, c]):.0f} kip")
     k = int(np.argmax(np.hypot(x, y)))
     ax.plot(x[k], y[k], "ko", ms=5, gid="peak",
             label=f"largest |u| = {h.peak_plan_displacement():.2f} in")
@@ -80,10 +90,10 @@ def plot_plan_impact_forces(history, path):
         ax = axes[c, 0]
         f = h.wall_force[:, c]
         ax.plot(h.time, f, color=WALL_COLORS[side], lw=0.9, gid=f"force {side}")
-        ax.set_title(f"{side} wall (gap {h.gaps[c]:g} in): {impacts[c]} impacts, peak "
-                     f"{f.max(initial=0.0):.1f} kip", fontsize=9)
+        ax.set_title(f"{side} wall (gap {h.gaps[c]:g} in): {_count(impacts[c])}, peak "
+                     f"{_peak(f):.1f} kip", fontsize=9)
         ax.set_ylabel("impact force [kip]")
-        ax.set_ylim(bottom=0.0, top=max(1.1 * f.max(initial=0.0), 1.0))
+        ax.set_ylim(bottom=0.0, top=max(1.1 * _peak(f), 1.0))
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     axes[-1, 0].set_xlim(h.time[0], h.time[-1])
