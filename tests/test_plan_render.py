@@ -1,0 +1,120 @@
+"""The top-view animation of a plan run (femoat.render.plan).
+
+The decimation and the camera are plain computations, tested here directly. Drawing runs in a
+subprocess (a missing OpenGL backend can crash VTK outright), skipped only when plain pyvista
+cannot render a sphere off-screen; any other failure fails the test.
+
+The orbit (as in tests/test_plan_figures.py): the base mat once around a circle of radius 5 in
+at one sample per degree over 3.6 s (θ = 100°/s · t), in a square moat with 4 in gaps, a
+wall's force 100 kip/in times the mat's overshoot past its line: the +x wall is in contact
+while |θ| < 36.87° (t < 0.37 s or t > 3.23 s), the +y wall while |θ − 90°| < 36.87°
+(0.53 s < t < 1.27 s).
+"""
+
+import json
+import textwrap
+
+import numpy as np
+import pytest
+from conftest import run_python
+
+from femoat.plotting.plan_history import PlanHistory
+from femoat.render.plan import PlanViewLayout, plan_camera, plan_frames, wall_rectangles
+
+SETUP = textwrap.dedent("""
+    import numpy as np
+    from femoat.plotting.plan_history import PlanHistory
+    theta = np.radians(np.arange(360.0))
+    base = 5.0 * np.column_stack([np.cos(theta), np.sin(theta)])
+    over = np.column_stack([base[:, 0] - 4, -base[:, 0] - 4, base[:, 1] - 4, -base[:, 1] - 4])
+    history = PlanHistory(np.arange(360) * 0.01, base, 100.0 * np.maximum(over, 0.0),
+                          (4.0, 4.0, 4.0, 4.0), title="circle")
+""")
+
+
+@pytest.fixture(scope="module")
+def history():
+    scope = {}
+    exec(SETUP, scope)  # noqa: S102 - the same lines the render subprocess runs
+    return scope["history"]
+
+
+def test_frames_decimate_the_orbit(history):
+    # Δ = speed/fps = 0.1 s over [0, 3.5] s: 36 frames at 0.0, 0.1, ..., 3.5 s.
+    f = plan_frames(history, fps=10, speed=1.0, end=3.5)
+    np.testing.assert_allclose(f["time"], 0.1 * np.arange(36), atol=1e-12)
+    # Frame 5 is t = 0.5 s, θ = 50°: the mat at 5·(cos 50°, sin 50°) (a sample, no interpolation).
+    np.testing.assert_allclose(f["base"][5], 5 * np.array([np.cos(np.radians(50)),
+                                                           np.sin(np.radians(50))]), atol=1e-12)
+    # Frame 6 covers (0.5, 0.6] s, θ = 51°..60°: +y contact (5 sin 60° = 4.33 > 4), its largest
+    # force 100·(4.330 − 4) = 33.0 kip; frame 5 covers θ = 41°..50°: 5 sin 50° = 3.83 < 4, none.
+    assert f["contact"][6, 2] and not f["contact"][5, 2]
+    assert f["force"][6, 2] == pytest.approx(100 * (5 * np.sin(np.radians(60)) - 4))
+    # An impact shorter than a frame still shows: a 0.02 s force spike between two frame times.
+    spike = np.zeros((360, 4))
+    spike[[151, 152], 1] = 7.0  # t = 1.51, 1.52 s, inside frame 16's (1.5, 1.6]
+    h = PlanHistory(history.time, history.base, spike, history.gaps)
+    g = plan_frames(h, fps=10, speed=1.0, end=3.5)
+    assert np.flatnonzero(g["contact"][:, 1]).tolist() == [16] and g["force"][16, 1] == 7.0
+    with pytest.raises(ValueError, match="more than max_frames"):
+        plan_frames(history, fps=1000)
+    with pytest.raises(ValueError, match="start = 2.0 and end = 1.0"):
+        plan_frames(history, start=2.0, end=1.0)
+    with pytest.raises(ValueError, match="fps = 0 must be a positive number"):
+        plan_frames(history, fps=0)
+
+
+def test_walls_stand_at_their_gaps(history):
+    # Mat footprint 40 × 30 in, walls 6 in thick, gaps 4 in: the +x wall's face is at
+    # 20 + 4 = 24 in and it spans y between the ±y walls' faces, ±(15 + 4) = ±19 in.
+    lay = PlanViewLayout(width=40.0, depth=30.0)
+    rect = wall_rectangles(history, lay)
+    assert rect["+x"] == (24.0, 30.0, -19.0, 19.0)
+    assert rect["-y"] == (-30.0, 30.0, -25.0, -19.0)
+    cam = plan_camera(history, lay, window_size=(400, 400))
+    # Everything fits in x ∈ [−30, 30], y ∈ [−25, 25]: centred at 0; a square window shows the
+    # larger half-extent, 30 in, with a 25 % margin: half-height 37.5 in.
+    assert cam == dict(center=(0.0, 0.0), parallel_scale=37.5)
+    with pytest.raises(ValueError, match="PlanViewLayout.width = -1"):
+        PlanViewLayout(width=-1)
+
+
+def test_plan_animation_flashes_the_wall_in_contact(tmp_path, render_backend, history):
+    script = SETUP + textwrap.dedent("""
+        import json
+        from femoat.render.plan import animate_plan, plan_camera, world_to_pixel
+        size = (320, 320)
+        path, n = animate_plan(history, "plan.gif", fps=10, end=3.5, window_size=size)
+        cam = plan_camera(history, window_size=size)
+        # the +x wall's middle (20 + 4 + 6/2 = 27 in, 0), the +y wall's, the mat's centre
+        print(json.dumps(dict(frames=n, px=world_to_pixel(cam, size, 27.0, 0.0),
+                              py=world_to_pixel(cam, size, 0.0, 27.0),
+                              mat=world_to_pixel(cam, size, 0.0, 0.0))))
+    """)
+    done = run_python(script, tmp_path)
+    assert done.returncode == 0, done.stderr[-3000:]
+    info = json.loads(done.stdout.strip().splitlines()[-1])
+    from PIL import Image
+
+    gif = Image.open(tmp_path / "plan.gif")
+    assert info["frames"] == 36 and gif.n_frames == 36  # 0.0 ... 3.5 s at 0.1 s
+
+    def rgb(frame, pixel):
+        gif.seek(frame)
+        col, row = pixel
+        return np.asarray(gif.convert("RGB"), dtype=int)[row, col]
+
+    def red(c):
+        return c[0] > 200 and c[1] < 60 and c[2] < 60
+
+    # Frame 0 (θ = 0°): the mat at (5, 0) is in contact with +x, not +y.
+    # Frame 9 (0.8 s, θ = 71°..80° in its interval): +y in contact, +x not.
+    assert red(rgb(0, info["px"])) and not red(rgb(0, info["py"]))
+    assert red(rgb(9, info["py"])) and not red(rgb(9, info["px"]))
+    idle = rgb(9, info["px"])
+    assert abs(idle[0] - idle[1]) < 20 and idle[0] > 120  # silver: a grey
+    # The base mat (steel blue, 70, 130, 180) covers its own centre in every frame (it moves
+    # 5 in, its half-width is 20 in).
+    for frame in (0, 9, 20):
+        c = rgb(frame, info["mat"])
+        assert c[2] > c[0] + 60
