@@ -119,9 +119,10 @@ def test_a_moat_with_missing_walls_closes_the_outline_around_the_orbit(tmp_path)
 
 
 @pytest.mark.parametrize("change, message", [
-    (dict(base=np.zeros((360, 3))), r"PlanHistory.base has shape \(360, 3\); it must be \(360, 2\)"),
-    (dict(wall_force=np.full((360, 4), np.nan)), r"PlanHistory.wall_force\[0, 0\] = nan is not "
-                                                 "finite"),
+    (dict(base=np.zeros((360, 3))),
+     r"PlanHistory.base has shape \(360, 3\); it must be \(360, 2\)"),
+    (dict(wall_force=np.full((360, 4), np.nan)),
+     r"PlanHistory.wall_force\[0, 0\] = nan is not finite"),
     (dict(gaps=(4, -1, 4, 4)), r"wall -x has gap = -1.0; a gap is a clearance >= 0 \[in\]"),
     (dict(gaps=(4, 4, 4)), r"PlanHistory.gaps has shape \(3,\); it must be \(4,\)"),
     (dict(time=np.zeros(360)), "at least two increasing times"),
@@ -155,7 +156,7 @@ def test_figures_of_an_opensees_twin_run(tmp_path):
     # as a pair scaled by 2, the paper's building in a square moat of steel walls (Jankowski
     # law) at 0.2 in, small enough for the opening seconds to reach a wall.
     pair = fema_p695_pair("farfield", 1)
-    n = int(round(3.0 / pair.dt)) + 1
+    n = round(3.0 / pair.dt) + 1
     pair = RecordPair(GroundMotion(pair.x.accel_g[:n], pair.dt),
                       GroundMotion(pair.y.accel_g[:n], pair.dt), scale=2.0)
     model = PlanModel(walls=rectangular_moat("steel", "J", gap=0.2))

@@ -34,8 +34,8 @@ def _array(name, value, shape):
     bad = ~np.isfinite(a)
     if bad.any():
         where = tuple(int(i) for i in np.argwhere(bad)[0])
-        raise ValueError(f"PlanHistory.{name}{list(where)} = {float(a[where])!r} is not finite: give a "
-                         "finished run's samples (no NaN or inf).")
+        raise ValueError(f"PlanHistory.{name}{list(where)} = {float(a[where])!r} is not finite: "
+                         "give a finished run's samples (no NaN or inf).")
     a.flags.writeable = False
     return a
 
@@ -90,8 +90,8 @@ class PlanHistory:
         gaps = _array("gaps", self.gaps, (w,))
         if np.any(gaps < 0):
             k = int(np.argmax(gaps < 0))
-            raise ValueError(f"PlanHistory.gaps: wall {sides[k]} has gap = {float(gaps[k])!r}; a gap is a "
-                             "clearance >= 0 [in].")
+            raise ValueError(f"PlanHistory.gaps: wall {sides[k]} has gap = {float(gaps[k])!r}; a "
+                             "gap is a clearance >= 0 [in].")
         if not isinstance(self.title, str):
             raise ValueError(f"PlanHistory.title = {self.title!r} must be a string.")
         for name, value in (("sides", sides), ("time", time), ("base", base),

@@ -96,7 +96,7 @@ def wall_rectangles(history, layout=None):
     h = check_history(history)
     lay = layout or PlanViewLayout()
     hx, hy, t = lay.width / 2, lay.depth / 2, lay.wall_thickness
-    r = {side: gap for side, gap in h.reach().items()}
+    r = h.reach()
     out = {}
     for side in h.sides:
         if side == "+x":
@@ -134,7 +134,7 @@ def world_to_pixel(camera, window_size, x, y):
     w, hgt = window_size
     per_in = (hgt / 2) / camera["parallel_scale"]
     cx, cy = camera["center"]
-    return int(round(w / 2 + (x - cx) * per_in)), int(round(hgt / 2 - (y - cy) * per_in))
+    return round(w / 2 + (x - cx) * per_in), round(hgt / 2 - (y - cy) * per_in)
 
 
 def animate_plan(history, path, fps=20, speed=1.0, start=0.0, end=None, layout=None, scale=1.0,
@@ -166,7 +166,7 @@ def animate_plan(history, path, fps=20, speed=1.0, start=0.0, end=None, layout=N
     plotter.add_mesh(pv.Box(bounds=(-hx - r["-x"], hx + r["+x"], -hy - r["-y"], hy + r["+y"],
                                     -2.0, -1.0)), color="whitesmoke", lighting=False)
     walls = []
-    for c, side in enumerate(h.sides):
+    for side in h.sides:
         x0, x1, y0, y1 = rects[side]
         actor = plotter.add_mesh(pv.Box(bounds=(x0, x1, y0, y1, 0.0, lay.wall_height)),
                                  color=WALL_IDLE, lighting=False)
@@ -207,7 +207,7 @@ def animate_plan(history, path, fps=20, speed=1.0, start=0.0, end=None, layout=N
         plotter.render()
         images.append(Image.fromarray(plotter.screenshot(return_img=True)))
     plotter.close()
-    duration_ms = max(int(round(1000.0 / fps)), 20)
+    duration_ms = max(round(1000.0 / fps), 20)
     frames_p = _shared_palette(images)
     with atomic_path(path) as tmp:
         frames_p[0].save(tmp, format="GIF", save_all=True, append_images=frames_p[1:],
