@@ -98,7 +98,9 @@ def test_render_tests_skip_with_one_reason_without_an_opengl_backend(tmp_path):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(tmp_path / "fake"), str(ROOT), os.environ.get("PYTHONPATH", "")])}
     done = _run(["-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider",
-                 "tests/test_wall_fe_render.py", "tests/test_render_backend.py::"
+                 "tests/test_wall_fe_render.py",
+                 "tests/test_plan_render.py::test_plan_animation_flashes_the_wall_in_contact",
+                 "tests/test_render_backend.py::"
                  "test_render_command_on_a_headless_machine_prints_no_x_warning"], env)
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     skips = [line for line in done.stdout.splitlines() if line.startswith("SKIPPED")]

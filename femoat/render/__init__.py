@@ -9,5 +9,5 @@ callers that must survive render in a subprocess.
 Modules: backend (the off-screen backend), fe_wall (a finite-element wall's mesh regions and
 mode shapes, drawn as its wall kind says), wall (the wall's deformed shape at the peak impact of
 a building run with a modal wall), animation (a GIF of a building run: base mat, floors, both
-walls).
+walls), plan (a top view of the base mat in its rectangular moat, walls flashing on impact).
 """
