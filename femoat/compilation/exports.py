@@ -13,6 +13,8 @@ EXPORTS = {
     "internal_force": "femoat.integration.forces",
     "start_peaks": "femoat.integration.peaks",
     "finish_peaks": "femoat.integration.peaks",
+    "start_episodes": "femoat.integration.episodes",
+    "finish_episodes": "femoat.integration.episodes",
     "material_commit": "femoat.structure.materials.kernels",
     "material_recoverable_energy": "femoat.structure.materials.kernels",
     "contact_stored_energy": "femoat.contact.kernels",

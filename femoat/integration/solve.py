@@ -9,7 +9,9 @@ import numpy as np
 from femoat.integration import explicit as ex
 from femoat.integration import kernel as kn
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
+from femoat.integration.episodes import N_EP, N_IMPACT
 from femoat.integration.limits import pack_limits
+from femoat.integration.options import RING_ROWS
 from femoat.integration.peaks import size as pk_size
 from femoat.integration.settings import Integrator
 from femoat.structure.roles import ISOLATOR, STORY
@@ -48,6 +50,9 @@ class RawHistory:
     """The run ended at a limit: a runaway row, or a criterion row with ``stop_at_limit``."""
     peaks: np.ndarray
     """The running peaks of the continuous solution (:mod:`femoat.integration.peaks`)."""
+    impacts: np.ndarray
+    """The impact episodes kept in the loop (:mod:`femoat.integration.episodes`), one row each
+    in the order they ended, columns ``episodes.IMPACT_FIELDS``."""
 
 
 METHOD_CODES = {"newmark": kn.METHOD_NEWMARK, "dp5": kn.METHOD_DP5}
@@ -58,7 +63,7 @@ CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
           chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
-          stop_at_limit=False):
+          stop_at_limit=False, history=True):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -77,8 +82,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         Called as progress(t, duration) after each chunk.
     channels : iterable of str
         Which histories to record, among :data:`CHANNELS`; displacements and contacts are always
-        recorded (the impact table and the peaks need them). Unrequested channels are not
-        written at all (their arrays come back with zero columns).
+        recorded. Unrequested channels are not written at all (their arrays come back with zero
+        columns).
+    history : bool
+        False keeps no history: the recorder is a ring of the last few samples that the running
+        peaks and the impact episodes read (both kept inside the loop), every history array
+        comes back with no rows, and ``channels`` is not read.
     lazy : bool
         Skip the wall DOFs in the Newton elimination while no contact carries force (exact: the
         walls are then uncoupled linear oscillators). False solves the full system every step
@@ -162,7 +171,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                   stats=np.zeros(kn.N_STATS, dtype=np.int64),
                   first_exceed=np.full(limits.shape[0], -1.0),
                   pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
-                  pk_n=np.zeros(1, dtype=np.int64))
+                  pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)))
     settings = Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
                         err_ref=err_ref, scale_accel=scale_accel, limits=limits)
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
@@ -192,15 +201,22 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     if unknown:
         raise ValueError(f"channels: {sorted(unknown)} unknown; choose from {CHANNELS}.")
     chan = set(channels) | {"displacement", "contacts"}
-    widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
-                  el=nel if "elements" in chan else 0, c=ncon)
-    # room for every record sample plus contact steps (grown by doubling when short, up to
-    # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
-    # points included
-    per_sample = 2.0 if integ.method == "dp5" else 1.2
-    max_cap = int(integ.record_budget // _row_bytes(widths))
-    cap = min(int(per_sample * duration / dt_rec / integ.record_every) + 1024, max_cap)
-    rec = _recorder(cap, widths)
+    if history:
+        widths = dict(u=n, v=n if "velocity" in chan else 0,
+                      a=n if "acceleration" in chan else 0, el=nel if "elements" in chan else 0,
+                      c=ncon)
+        # room for every record sample plus contact steps (grown by doubling when short, up to
+        # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
+        # points included
+        per_sample = 2.0 if integ.method == "dp5" else 1.2
+        max_cap = int(integ.record_budget // _row_bytes(widths))
+        cap = min(int(per_sample * duration / dt_rec / integ.record_every) + 1024, max_cap)
+    else:  # what the peaks and the episodes read: the last samples' contact channels
+        widths = dict(u=0, v=0, a=0, el=0, c=ncon)
+        cap = max_cap = RING_ROWS
+    iopt[kn.I_RING] = 0 if history else 1
+    rec = _recorder(cap, widths, IMPACT_ROWS + 3 * ncon)
+    kern.start_episodes(state)
 
     cpu0 = _time.process_time()
     # with a progress display the loop returns 20 times to report; without, it runs through
@@ -211,10 +227,13 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     while True:
         status = kern.run_chunk(targets[k], model, state, settings, work, rec)
         if status == kn.BUFFER_FULL:
-            if cap >= max_cap:
-                raise RecordBudgetError(_budget_message(state.t[0], duration, cap, integ))
-            cap = min(2 * cap, max_cap)
-            rec = _grow(rec, cap)
+            if history and state.stats[kn.S_NOUT] >= cap:
+                if cap >= max_cap:
+                    raise RecordBudgetError(_budget_message(state.t[0], duration, cap, integ))
+                cap = min(2 * cap, max_cap)
+                rec = _grow(rec, cap)
+            else:  # the impact table is short
+                rec = rec._replace(episodes=_grown(rec.episodes, 2 * rec.episodes.shape[0]))
             continue
         if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
             raise SolverError(_failure_message(packed, state.t[0], u, v, state.c_closed, integ,
@@ -225,37 +244,57 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
             break
         k = min(k + 1, chunks - 1)
     kern.finish_peaks(model, state, settings, rec)
+    kern.finish_episodes(state, rec)
     cpu = _time.process_time() - cpu0
 
     stats = state.stats
     m = stats[kn.S_NOUT]
-    t0 = np.zeros(1)
-    hist = RawHistory(
-        t=np.concatenate([t0, rec.t[:m]]),
-        u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
-        v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
-                     rec.v[:m]]),
-        a=np.vstack([a_initial[:widths["a"]], rec.a[:m]]),
-        ag=np.concatenate([[ag0], rec.ag[:m]]),
-        el_force=np.vstack([el_f_initial[:widths["el"]], rec.ef[:m]]),
-        el_deformation=np.vstack([el_d_initial[:widths["el"]], rec.ed[:m]]),
-        contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
-        indentation=np.vstack([-packed.c_gap[None, :], rec.cd[:m]]),
-        indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
-        closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
+    if history:
+        rows = dict(
+            t=np.concatenate([np.zeros(1), rec.t[:m]]),
+            u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
+            v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
+                         rec.v[:m]]),
+            a=np.vstack([a_initial[:widths["a"]], rec.a[:m]]),
+            ag=np.concatenate([[ag0], rec.ag[:m]]),
+            el_force=np.vstack([el_f_initial[:widths["el"]], rec.ef[:m]]),
+            el_deformation=np.vstack([el_d_initial[:widths["el"]], rec.ed[:m]]),
+            contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
+            indentation=np.vstack([packed.c_B @ _initial_u(u0, n) - packed.c_gap, rec.cd[:m]]),
+            indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
+            closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
+        )
+    else:  # no rows, every column
+        rows = {name: np.zeros((0,) + (() if w is None else (dict(n=n, el=nel, c=ncon)[w],)),
+                               dtype=np.int8 if name == "closed" else np.float64)
+                for name, w in HISTORY_ARRAYS.items()}
+    return RawHistory(
+        **rows,
         stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
-                   cpu_seconds=cpu, recorded=int(m), kernels=backend,
+                   cpu_seconds=cpu, recorded=int(m) if history else 0, kernels=backend,
                    t_reached=float(state.t[0])),
         energy=_energy(kern, packed, u, v, state.el_S, state.el_W, state.c_H, state.c_d,
                        state.c_W, state.c_closed, state.energy, e_initial),
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
         stopped_at_limit=bool(status == kn.LIMIT_REACHED),
         peaks=state.pk.copy(),
+        impacts=rec.episodes[:stats[kn.S_IMPACTS]].copy(),
     )
-    hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
-    return hist
+
+
+def _initial_u(u0, n):
+    """The initial displacements [in] (zeros when not given)."""
+    return np.zeros(n) if u0 is None else np.asarray(u0, dtype=float)
+
+
+HISTORY_ARRAYS = dict(t=None, u="n", v="n", a="n", ag=None, el_force="el", el_deformation="el",
+                      contact_force="c", indentation="c", indentation_rate="c", closed="c")
+"""The :class:`RawHistory` fields that hold one row per recorded sample, and the key of their
+width (n DOFs, el elements, c contacts; None: one value per sample)."""
+IMPACT_ROWS = 64
+"""The impact table's first room [episodes] (doubled when short)."""
 
 
 ACCELERATION_FRACTION = 0.15
@@ -373,13 +412,16 @@ def _row_bytes(widths):
     """Bytes of one recorded sample for the channel ``widths``."""
     return sum(np.dtype(np.int8 if name == "closed" else np.float64).itemsize
                * (1 if RECORDER_COLUMNS[name] is None else widths[RECORDER_COLUMNS[name]])
-               for name in Recorder._fields)
+               for name in RECORDER_COLUMNS)
 
 
-def _recorder(cap, widths):
-    """Empty history buffers for ``cap`` samples."""
+def _recorder(cap, widths, impact_rows):
+    """Empty history buffers for ``cap`` samples and an impact table of ``impact_rows``."""
     bufs = []
     for name in Recorder._fields:
+        if name == "episodes":
+            bufs.append(np.zeros((impact_rows, N_IMPACT)))
+            continue
         key = RECORDER_COLUMNS[name]
         shape = (cap,) if key is None else (cap, widths[key])
         bufs.append(np.zeros(shape, dtype=np.int8 if name == "closed" else np.float64))
@@ -387,13 +429,16 @@ def _recorder(cap, widths):
 
 
 def _grow(rec, cap):
-    """The buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
-    out = []
-    for arr in rec:
-        new = np.zeros((cap,) + arr.shape[1:], dtype=arr.dtype)
-        new[: arr.shape[0]] = arr
-        out.append(new)
-    return Recorder(*out)
+    """The history buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
+    return Recorder(*(arr if name == "episodes" else _grown(arr, cap)
+                      for name, arr in zip(Recorder._fields, rec)))
+
+
+def _grown(arr, rows):
+    """``arr`` with room for ``rows`` rows (its rows kept, zeros after)."""
+    new = np.zeros((rows,) + arr.shape[1:], dtype=arr.dtype)
+    new[: arr.shape[0]] = arr
+    return new
 
 
 def _quadratic(x, A):
