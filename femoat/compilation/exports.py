@@ -15,8 +15,7 @@ EXPORTS = {
     "finish_peaks": "femoat.integration.peaks",
     "start_episodes": "femoat.integration.episodes",
     "finish_episodes": "femoat.integration.episodes",
-    "material_commit": "femoat.structure.materials.kernels",
-    "material_recoverable_energy": "femoat.structure.materials.kernels",
-    "contact_stored_energy": "femoat.contact.kernels",
+    "initial_element_energies": "femoat.integration.energy",
+    "stored_energies": "femoat.integration.energy",
 }
 """{name: module defining the kernel of that name}."""

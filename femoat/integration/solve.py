@@ -442,36 +442,30 @@ def _grown(arr, rows):
 
 
 def _quadratic(x, A):
-    """xᵀ·A·x, correctly rounded sum of its terms: the same bits on every machine (numpy's
-    matrix products take machine-dependent SIMD paths and differ in the last bit)."""
-    n = len(x)
-    return math.fsum(float(x[i]) * float(A[i, j]) * float(x[j]) for i in range(n)
-                     for j in range(n) if A[i, j] != 0.0)
+    """xᵀ·A·x, correctly rounded sum of its terms x_i·A_ij·x_j (A_ij ≠ 0): the same bits on
+    every machine (numpy's matrix products take machine-dependent SIMD paths and differ in the
+    last bit; an exactly rounded sum does not depend on the order of its terms)."""
+    x = np.asarray(x, dtype=float)
+    return math.fsum(((x[:, None] * A) * x[None, :])[A != 0.0].tolist())
 
 
 def _initial_energy(kern, packed, u, v):
     """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
-    material_commit, material_recoverable_energy = (kern.material_commit,
-                                                    kern.material_recoverable_energy)
     e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
-    for k in range(packed.el_code.size):
-        i, j = packed.el_i[k], packed.el_j[k]
-        d = u[i] - (u[j] if j >= 0 else 0.0)
-        s = packed.el_S[k].copy()
-        material_commit(packed.el_code[k], packed.el_P[k], s, d, 0.0)
-        e += material_recoverable_energy(packed.el_code[k], packed.el_P[k], s)
+    el = np.zeros(packed.el_code.size)
+    kern.initial_element_energies(packed.el_i, packed.el_j, packed.el_code, packed.el_P,
+                                  packed.el_S, u, np.zeros(packed.el_S.shape[1]), el)
+    for x in el.tolist():
+        e += x
     return float(e)
 
 
 def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
-    contact_stored_energy = kern.contact_stored_energy
-    material_recoverable_energy = kern.material_recoverable_energy
     kinetic = 0.5 * _quadratic(v, packed.M)
     linear_strain = 0.5 * _quadratic(u, packed.K)
-    el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])
-                       for e in range(packed.el_code.size)])
-    c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
-                      if c_closed[c] else 0.0 for c in range(packed.c_code.size)])
+    el_rec, c_rec = np.zeros(packed.el_code.size), np.zeros(packed.c_code.size)
+    kern.stored_energies(packed.el_code, packed.el_P, el_S, packed.c_code, packed.c_P, c_H, c_d,
+                         c_closed, el_rec, c_rec)
     el_diss = el_W - el_rec
     iso = [e for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
     sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]
