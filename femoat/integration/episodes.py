@@ -26,13 +26,13 @@ end; ``state.stats[S_IMPACTS]`` counts them).
 import numpy as np
 
 from femoat.compilation.jit import njit
+from femoat.integration.rows import row
 from femoat.integration.options import S_IMPACTS, S_NOUT
 
 # state.ep columns: the running episode of one contact
 (EP_PHASE, EP_START, EP_APPROACH, EP_MAX_INDENT, EP_IMPULSE, EP_FMAX, EP_T_ZERO, EP_T_END,
- EP_T_BEFORE, EP_F_BEFORE, EP_T_PEAK, EP_WAIT, EP_T_AFTER, EP_F_AFTER, EP_T_PREV,
- EP_F_PREV) = range(16)
-N_EP = 16
+ EP_T_BEFORE, EP_F_BEFORE, EP_T_PEAK, EP_WAIT, EP_T_AFTER, EP_F_AFTER) = range(14)
+N_EP = 14
 # EP_PHASE: no episode, an episode open, an episode ended whose peak waits for sample k + 1
 IDLE, OPEN, ENDED = 0.0, 1.0, 2.0
 
@@ -83,20 +83,22 @@ def _emit(c, row, has_after, state, rec):
 
 
 @njit(cache=True, inline="always")
-def _new_peak(row, t, f):
-    """Sample (t, f) is the episode's largest force so far: k moves there."""
+def _new_peak(row, t, f, t_prev, f_prev):
+    """Sample (t, f) is the episode's largest force so far: k moves there ((t_prev, f_prev):
+    the sample before it)."""
     row[EP_FMAX] = f
-    row[EP_T_BEFORE] = row[EP_T_PREV]
-    row[EP_F_BEFORE] = row[EP_F_PREV]
+    row[EP_T_BEFORE] = t_prev
+    row[EP_F_BEFORE] = f_prev
     row[EP_T_PEAK] = t
     row[EP_WAIT] = 1.0
     row[EP_T_ZERO] = t if f <= 0.0 else np.nan
 
 
 @njit(cache=True, inline="always")
-def _take(c, t, f, d, dv, closed, state, rec):
+def _take(c, t, f, d, dv, closed, t_prev, f_prev, state, rec):
     """Contact ``c``'s final values at one recorded sample: time t [s], force f [kip],
-    indentation d [in], its rate dv [in/s], closed flag."""
+    indentation d [in], its rate dv [in/s], closed flag; (t_prev, f_prev) at the sample
+    before."""
     row = state.ep[c]
     if row[EP_WAIT] == 1.0:  # the sample after the peak: the parabola's third point
         row[EP_T_AFTER] = t
@@ -105,11 +107,11 @@ def _take(c, t, f, d, dv, closed, state, rec):
         if row[EP_PHASE] == ENDED:
             _emit(c, row, True, state, rec)
     if row[EP_PHASE] == OPEN:
-        row[EP_IMPULSE] += (t - row[EP_T_PREV]) * (f + row[EP_F_PREV]) / 2.0
+        row[EP_IMPULSE] += (t - t_prev) * (f + f_prev) / 2.0
         if d > row[EP_MAX_INDENT]:
             row[EP_MAX_INDENT] = d
         if f > row[EP_FMAX]:
-            _new_peak(row, t, f)
+            _new_peak(row, t, f, t_prev, f_prev)
         elif np.isnan(row[EP_T_ZERO]) and f <= 0.0:
             row[EP_T_ZERO] = t
         row[EP_T_END] = t
@@ -125,19 +127,27 @@ def _take(c, t, f, d, dv, closed, state, rec):
         row[EP_MAX_INDENT] = d
         row[EP_IMPULSE] = 0.0
         row[EP_T_END] = t
-        _new_peak(row, t, f)
-    row[EP_T_PREV] = t
-    row[EP_F_PREV] = f
+        _new_peak(row, t, f, t_prev, f_prev)
 
 
 @njit(cache=True, inline="always")
 def _take_sample(k, state, rec):
-    """Take in recorder sample ``k`` (its row ``k`` modulo the buffer's length) for every
-    contact."""
-    r = k % rec.t.shape[0]
-    for c in range(state.ep.shape[0]):
+    """Take in recorder sample ``k`` for every contact that is in an episode, waits for the
+    sample after its peak or closes at k (the others have nothing to do: most samples). The
+    sample before k is still in the recorder (a ring holds k − 1, k and k + 1); before sample 0
+    is the initial state (time 0, no force)."""
+    rows = rec.t.shape[0]
+    r = row(k, rows)
+    ep = state.ep
+    for c in range(ep.shape[0]):
+        if ep[c, EP_PHASE] == IDLE and ep[c, EP_WAIT] == 0.0 and rec.closed[r, c] == 0:
+            continue
+        t_prev, f_prev = 0.0, 0.0
+        if k >= 1:
+            p = row(k - 1, rows)
+            t_prev, f_prev = rec.t[p], rec.cf[p, c]
         _take(c, rec.t[r], rec.cf[r, c], rec.cd[r, c], rec.cv[r, c], rec.closed[r, c] != 0,
-              state, rec)
+              t_prev, f_prev, state, rec)
 
 
 @njit(cache=True, inline="always")
@@ -149,8 +159,7 @@ def push_episodes(k, state, rec):
 
 @njit(cache=True)
 def start_episodes(state):
-    """No episode yet; the initial state (time 0, every gap open, no force) as the sample
-    before the first."""
+    """No episode yet."""
     ep = state.ep
     for c in range(ep.shape[0]):
         for j in range(N_EP):

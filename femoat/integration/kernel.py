@@ -58,6 +58,7 @@ from femoat.integration.limits import (
     check_limits,
 )
 from femoat.integration.episodes import finish_episodes, push_episodes, start_episodes  # noqa: F401
+from femoat.integration.rows import row
 from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: F401
 from femoat.structure.materials.kernels import material_commit, material_trial
 
@@ -159,7 +160,7 @@ def _mark_last_sample(c, t, model, state, rec):
     law's force at that state (recorded before, with the episode not yet open, as zero; within
     gap_tol of the wall it is tiny but not zero)."""
     k = state.stats[S_NOUT]
-    last = (k - 1) % rec.t.shape[0]
+    last = row(k - 1, rec.t.shape[0])
     if k > 0 and rec.t[last] == t:
         rec.closed[last, c] = state.c_closed[c]
         if state.c_closed[c] and rec.cf[last, c] == 0.0 and state.c_d[c] > 0.0:
@@ -172,7 +173,7 @@ def _sample_before_event(t, model, state, settings, rec):
     """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
     k = state.stats[S_NOUT]
-    if t > 0.0 and (k == 0 or rec.t[(k - 1) % rec.t.shape[0]] != t):
+    if t > 0.0 and (k == 0 or rec.t[row(k - 1, rec.t.shape[0])] != t):
         record(t, model, state, settings, rec)
 
 
@@ -743,7 +744,7 @@ def record(t, model, state, settings, rec):
     not requested: nothing is written), and pass it to the running peaks and episodes."""
     u, v, a = state.u, state.v, state.a
     n_out = state.stats[S_NOUT]
-    k = n_out % rec.t.shape[0]
+    k = row(n_out, rec.t.shape[0])
     rec.t[k] = t
     rec.ag[k] = state.ag_now[0]
     for i in range(rec.u.shape[1]):

@@ -25,6 +25,7 @@ indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g)
 import numpy as np
 
 from femoat.compilation.jit import njit
+from femoat.integration.rows import row
 from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
 
 
@@ -204,8 +205,8 @@ def _judge_older(k, model, state, settings, rec):
         return
     ring = state.pk_ring
     rows = rec.closed.shape[0]
-    open0 = True if k - 2 < 0 else _open(rec.closed[(k - 2) % rows])
-    open1 = True if k - 1 < 0 else _open(rec.closed[(k - 1) % rows])
+    open0 = True if k - 2 < 0 else _open(rec.closed[row(k - 2, rows)])
+    open1 = True if k - 1 < 0 else _open(rec.closed[row(k - 1, rows)])
     _interval(open0 and open1, model, settings, ring, state.pk)
     for j in range(ring.shape[1]):
         ring[0, j] = ring[1, j]
