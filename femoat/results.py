@@ -84,8 +84,8 @@ class RunResult:
         r = cls(hist.t, hist.u, hist.v, hist.a, hist.ag, hist.el_force, hist.el_deformation,
                 hist.contact_force, hist.indentation, hist.indentation_rate,
                 hist.closed.astype(np.int8), meta)
-        r.meta["impacts"] = r._impact_table()
-        r.meta["peaks"] = r._peaks(getattr(hist, "peaks", None))
+        r.meta["impacts"] = _impact_rows(hist.impacts, meta["contact_names"])
+        r.meta["peaks"] = r._peaks(hist.peaks)
         return r
 
     # ---- derived channels ----------------------------------------------------------------
@@ -99,6 +99,10 @@ class RunResult:
         return self.displacement[:, 0]
 
     def _require(self, name):
+        if self.time.size == 0:
+            raise ValueError("the run kept no history (history=False): its peaks and impacts "
+                             "are in result.peaks and result.impacts; run with history=True "
+                             "for its histories.")
         if getattr(self, name).shape[1] == 0:
             raise ValueError(f"the {name} channel was not recorded: run with it in channels.")
 
@@ -149,6 +153,8 @@ class RunResult:
 
     # ---- impacts and peaks ---------------------------------------------------------------
     def _impact_table(self):
+        """The impact table read from the recorded history (the solver keeps the same table
+        sample by sample, :mod:`femoat.integration.episodes`: this is its reference)."""
         rows = []
         t = self.time
         for c, name in enumerate(self.meta["contact_names"]):
@@ -322,6 +328,16 @@ class RunResult:
             raise ValueError(f"{path}: not a femoat result file ({exc}).") from None
         return cls(**arrays, meta=meta)
 
+
+def _impact_rows(table, contact_names):
+    """The impact table (dicts, by start, ties in contact order) from the solver's episode rows
+    (columns :data:`femoat.integration.episodes.IMPACT_FIELDS`)."""
+    rows = [dict(side=contact_names[int(c)], start=float(start), duration=float(duration),
+                 approach_velocity=float(v), peak_force=float(f), max_indentation=float(d),
+                 impulse=float(p))
+            for c, start, duration, v, f, d, p in table.tolist()]
+    order = sorted(range(len(rows)), key=lambda i: (rows[i]["start"], int(table[i, 0])))
+    return [rows[i] for i in order]
 
 
 def impact_summary(impacts):

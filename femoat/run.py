@@ -23,7 +23,7 @@ def packed_model(model):
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
-        progress=None, channels=None, backend="auto", collapse=None):
+        progress=None, channels=None, backend="auto", collapse=None, history=True):
     """Integrate ``model`` under ``motion`` and return a :class:`~femoat.results.RunResult`.
 
     Parameters
@@ -45,6 +45,11 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     channels : iterable of str or None
         Histories to record (see :data:`femoat.integration.solve.CHANNELS`); None records all.
         Decimate the open phase with ``Integrator(record_every=k)``.
+    history : bool
+        False keeps no history (what a suite does): the peaks, the impact table, the energy
+        balance, collapse and runaway are all kept inside the compiled loop and are the same
+        as with a history; the result's history arrays have no rows (``channels`` must then
+        be None).
     backend : str
         Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
         "aot" (see :mod:`femoat.compilation.aot`); the results are identical.
@@ -66,6 +71,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         duration = motion.duration + extra_time
     integ = integrator or Integrator()
     packed = packed_model(model)
+    if channels is not None and not history:
+        raise ValueError("channels names the histories to record; with history=False none "
+                         "is recorded: leave channels at None.")
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits = runaway_limits(model, packed)
     if collapse is not None:
@@ -74,7 +82,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         limits = collapse.limits(model, packed) + limits
         kw.update(stop_at_limit=collapse.stop)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, backend=backend, limits=limits, **kw)
+                 progress=progress, backend=backend, limits=limits, history=history, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],

@@ -13,8 +13,9 @@ EXPORTS = {
     "internal_force": "femoat.integration.forces",
     "start_peaks": "femoat.integration.peaks",
     "finish_peaks": "femoat.integration.peaks",
-    "material_commit": "femoat.structure.materials.kernels",
-    "material_recoverable_energy": "femoat.structure.materials.kernels",
-    "contact_stored_energy": "femoat.contact.kernels",
+    "start_episodes": "femoat.integration.episodes",
+    "finish_episodes": "femoat.integration.episodes",
+    "initial_element_energies": "femoat.integration.energy",
+    "stored_energies": "femoat.integration.energy",
 }
 """{name: module defining the kernel of that name}."""

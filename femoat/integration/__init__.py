@@ -2,6 +2,14 @@
 
 from femoat.integration.limits import Limit
 from femoat.integration.settings import Integrator
-from femoat.integration.solve import RawHistory, RecordBudgetError, SolverError, solve
+from femoat.integration.solve import (
+    RawHistory,
+    RecordBudgetError,
+    SolverError,
+    Status,
+    integrate,
+    solve,
+)
 
-__all__ = ["Integrator", "Limit", "RawHistory", "RecordBudgetError", "SolverError", "solve"]
+__all__ = ["Integrator", "Limit", "RawHistory", "RecordBudgetError", "SolverError", "Status",
+           "integrate", "solve"]

@@ -57,6 +57,8 @@ from femoat.integration.limits import (
     RUNAWAY_EXCEEDED,
     check_limits,
 )
+from femoat.integration.episodes import finish_episodes, push_episodes, start_episodes  # noqa: F401
+from femoat.integration.rows import row
 from femoat.integration.peaks import finish_peaks, push_sample, start_peaks  # noqa: F401
 from femoat.structure.materials.kernels import material_commit, material_trial
 
@@ -82,6 +84,7 @@ from femoat.integration.options import (  # noqa: F401  (the option slots, one h
     I_N_EXPLICIT,
     I_N_STRUCT,
     I_RECORD_EVERY,
+    I_RING,
     I_STOP_AT_LIMIT,
     LIMIT_REACHED,
     METHOD_DP5,
@@ -92,6 +95,7 @@ from femoat.integration.options import (  # noqa: F401  (the option slots, one h
     N_STATS,
     NEWTON_FAILED,
     S_EVENTS,
+    S_IMPACTS,
     S_NEWTON,
     S_NOUT,
     S_REJECT_ERR,
@@ -156,10 +160,11 @@ def _mark_last_sample(c, t, model, state, rec):
     law's force at that state (recorded before, with the episode not yet open, as zero; within
     gap_tol of the wall it is tiny but not zero)."""
     k = state.stats[S_NOUT]
-    if k > 0 and rec.t[k - 1] == t:
-        rec.closed[k - 1, c] = state.c_closed[c]
-        if state.c_closed[c] and rec.cf[k - 1, c] == 0.0 and state.c_d[c] > 0.0:
-            rec.cf[k - 1, c] = contact_force(model.c_code[c], model.c_P[c], state.c_H[c],
+    last = row(k - 1, rec.t.shape[0])
+    if k > 0 and rec.t[last] == t:
+        rec.closed[last, c] = state.c_closed[c]
+        if state.c_closed[c] and rec.cf[last, c] == 0.0 and state.c_d[c] > 0.0:
+            rec.cf[last, c] = contact_force(model.c_code[c], model.c_P[c], state.c_H[c],
                                              state.c_d[c], _rate(model.c_B, c, state.v))[0]
 
 
@@ -168,7 +173,7 @@ def _sample_before_event(t, model, state, settings, rec):
     """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
     k = state.stats[S_NOUT]
-    if t > 0.0 and (k == 0 or rec.t[k - 1] != t):
+    if t > 0.0 and (k == 0 or rec.t[row(k - 1, rec.t.shape[0])] != t):
         record(t, model, state, settings, rec)
 
 
@@ -734,10 +739,12 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
 
 @njit(cache=True, inline="always")
 def record(t, model, state, settings, rec):
-    """Append the committed state at time ``t`` to the recorder (a channel whose buffer has no
-    columns was not requested: nothing is written)."""
+    """Append the committed state at time ``t`` as sample ``k`` to the recorder, in its row
+    ``k`` modulo its length (a ring without history; a channel whose buffer has no columns was
+    not requested: nothing is written), and pass it to the running peaks and episodes."""
     u, v, a = state.u, state.v, state.a
-    k = state.stats[S_NOUT]
+    n_out = state.stats[S_NOUT]
+    k = row(n_out, rec.t.shape[0])
     rec.t[k] = t
     rec.ag[k] = state.ag_now[0]
     for i in range(rec.u.shape[1]):
@@ -761,8 +768,9 @@ def record(t, model, state, settings, rec):
         rec.cd[k, c] = c_d[c]
         rec.cv[k, c] = dd1
         rec.closed[k, c] = c_closed[c]
-    state.stats[S_NOUT] = k + 1
-    push_sample(t, k, model, state, settings, rec)
+    state.stats[S_NOUT] = n_out + 1
+    push_sample(t, n_out, model, state, settings, rec)
+    push_episodes(n_out, state, rec)
 
 
 @njit(cache=True, inline="always")
@@ -819,6 +827,9 @@ def run_chunk(t_stop, model, state, settings, work, rec):
     fopt = settings.fopt
     hmin, t_end, h_contact, gap_tol = fopt[F_HMIN], fopt[F_TEND], fopt[F_HCONTACT], fopt[F_GAPTOL]
     rec_every, method = settings.iopt[I_RECORD_EVERY], settings.iopt[I_METHOD]
+    ring = settings.iopt[I_RING] == 1
+    # room for the episodes one loop pass can end and finish_episodes after the last
+    impacts_room = rec.episodes.shape[0] - 3 * model.c_gap.size
     c_closed, stats = state.c_closed, state.stats
     t, h = state.t[0], state.h[0]
     t_goal = min(t_stop, t_end)
@@ -830,7 +841,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         stalls += 1
         if stalls > 100000:  # no step accepted after 100000 attempts: report, don't spin
             return _stop(STEP_TOO_SMALL, t, h, state)
-        if stats[S_NOUT] >= rec.t.size:
+        if (stats[S_NOUT] >= rec.t.size and not ring) or stats[S_IMPACTS] > impacts_room:
             return _stop(BUFFER_FULL, t, h, state)
         h_asked = h
         hh, t1 = _step_end(t, h, t_goal, shortened, fopt, model.ag.size)

@@ -25,6 +25,7 @@ indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g)
 import numpy as np
 
 from femoat.compilation.jit import njit
+from femoat.integration.rows import row
 from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
 
 
@@ -198,13 +199,14 @@ def _keep(t, model, state, settings):
 
 @njit(cache=True, inline="always")
 def _judge_older(k, model, state, settings, rec):
-    """With two samples kept (recorder indices k − 2 and k − 1, −1 the initial state with every
-    gap open), judge the interval between them and keep only the newer."""
+    """With two samples kept (recorder samples k − 2 and k − 1, in their rows modulo the
+    recorder's length; −1 the initial state with every gap open), judge the interval between them and keep only the newer."""
     if state.pk_n[0] < 2:
         return
     ring = state.pk_ring
-    open0 = True if k - 2 < 0 else _open(rec.closed[k - 2])
-    open1 = True if k - 1 < 0 else _open(rec.closed[k - 1])
+    rows = rec.closed.shape[0]
+    open0 = True if k - 2 < 0 else _open(rec.closed[row(k - 2, rows)])
+    open1 = True if k - 1 < 0 else _open(rec.closed[row(k - 1, rows)])
     _interval(open0 and open1, model, settings, ring, state.pk)
     for j in range(ring.shape[1]):
         ring[0, j] = ring[1, j]

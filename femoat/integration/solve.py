@@ -3,13 +3,16 @@
 import math
 import time as _time
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
 from femoat.integration import explicit as ex
 from femoat.integration import kernel as kn
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
+from femoat.integration.episodes import N_EP, N_IMPACT
 from femoat.integration.limits import pack_limits
+from femoat.integration.options import RING_ROWS
 from femoat.integration.peaks import size as pk_size
 from femoat.integration.settings import Integrator
 from femoat.structure.roles import ISOLATOR, STORY
@@ -48,6 +51,9 @@ class RawHistory:
     """The run ended at a limit: a runaway row, or a criterion row with ``stop_at_limit``."""
     peaks: np.ndarray
     """The running peaks of the continuous solution (:mod:`femoat.integration.peaks`)."""
+    impacts: np.ndarray
+    """The impact episodes kept in the loop (:mod:`femoat.integration.episodes`), one row each
+    in the order they ended, columns ``episodes.IMPACT_FIELDS``."""
 
 
 METHOD_CODES = {"newmark": kn.METHOD_NEWMARK, "dp5": kn.METHOD_DP5}
@@ -58,7 +64,7 @@ CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
           chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
-          stop_at_limit=False):
+          stop_at_limit=False, history=True):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
     Parameters
@@ -77,8 +83,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         Called as progress(t, duration) after each chunk.
     channels : iterable of str
         Which histories to record, among :data:`CHANNELS`; displacements and contacts are always
-        recorded (the impact table and the peaks need them). Unrequested channels are not
-        written at all (their arrays come back with zero columns).
+        recorded. Unrequested channels are not written at all (their arrays come back with zero
+        columns).
+    history : bool
+        False keeps no history: the recorder is a ring of the last few samples that the running
+        peaks and the impact episodes read (both kept inside the loop), every history array
+        comes back with no rows, and ``channels`` is not read.
     lazy : bool
         Skip the wall DOFs in the Newton elimination while no contact carries force (exact: the
         walls are then uncoupled linear oscillators). False solves the full system every step
@@ -96,6 +106,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         End the run at the first step beyond a criterion row too (``RawHistory.stopped_at_limit``
         is then True, as after a runaway row).
 
+    Returns the :class:`RawHistory`: :func:`integrate` without its status, raising instead.
+
     Raises
     ------
     SolverError
@@ -103,9 +115,71 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         :class:`RecordBudgetError` when the recorded histories would outgrow
         ``integrator.record_budget``.
     """
+    hist, status = integrate(packed, ag, dt_rec, duration, integrator, u0=u0, v0=v0,
+                             progress=progress, chunks=chunks, lazy=lazy, channels=channels,
+                             backend=backend, limits=limits, stop_at_limit=stop_at_limit,
+                             history=history)
+    if status.error is not None:
+        raise status.error(status.message)
+    return hist
+
+
+class Status(NamedTuple):
+    """How a run ended (:func:`integrate`)."""
+
+    code: str
+    """"done" (the whole duration), "limit" (a runaway row, or a criterion row with
+    ``stop_at_limit``), "failed" (no step converged at the smallest step), "stalled" (no step
+    accepted while locating an event) or "budget" (the record outgrew its budget)."""
+    t: float
+    """The time reached [s]."""
+    message: str
+    """What happened and what to change ("" when the run ended normally)."""
+    error: type | None
+    """The exception :func:`solve` raises for it (None when the run ended normally)."""
+
+
+def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
+              chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
+              stop_at_limit=False, history=True):
+    """(:class:`RawHistory`, :class:`Status`): :func:`solve` (the same parameters) without
+    raising when the stepping cannot continue: the history, peaks, impacts and energies up
+    to the time reached, and the status saying why it stopped. Bad input still raises
+    ``ValueError``."""
     kern, backend = kernels(backend)
-    packed = _canonical(packed)
     integ = integrator or Integrator()
+    packed, ag, u, v = _inputs(packed, ag, dt_rec, duration, u0, v0)
+    settings = _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit,
+                         history)
+    model, state, work = _bundles(packed, ag, u, v, settings)
+    start = _start(kern, packed, model, state, settings, work, channels, history, integ,
+                   duration)
+    cpu0 = _time.process_time()
+    status, rec = _advance(kern, model, state, settings, work, start.rec, integ, duration,
+                           progress, chunks, packed, history)
+    kern.finish_peaks(model, state, settings, rec)
+    kern.finish_episodes(state, rec)
+    cpu = _time.process_time() - cpu0
+    return _history(kern, backend, packed, model, state, rec, start, history, status, cpu,
+                    u0, v0), status
+
+
+class _Start(NamedTuple):
+    """What the loop starts from besides the bundles: the initial state's values that the
+    recorder does not hold (its first row), the initial energy, the recorder."""
+
+    ag0: float
+    a: np.ndarray
+    el_f: np.ndarray
+    el_d: np.ndarray
+    energy: float
+    rec: Recorder
+    widths: dict
+
+
+def _inputs(packed, ag, dt_rec, duration, u0, v0):
+    """The validated inputs: (packed in the kernels' layout, ag as float array, u, v)."""
+    packed = _canonical(packed)
     ag = np.ascontiguousarray(ag, dtype=float)
     if ag.ndim != 1 or ag.size < 2 or not np.all(np.isfinite(ag)):
         raise ValueError("ag must be a 1-D array of at least 2 finite accelerations [in/s²].")
@@ -118,7 +192,12 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     v = np.zeros(n) if v0 is None else np.array(v0, dtype=float)
     if u.shape != (n,) or v.shape != (n,) or not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
         raise ValueError(f"u0 and v0 must be finite arrays of length {n} ({packed.dof_names}).")
+    return packed, ag, u, v
 
+
+def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, history):
+    """The :class:`Settings` bundle: option slots, error scales, limit rows."""
+    n = packed.n
     scale_open, scale_contact, err_ref, scale_accel = error_scales(packed, np.abs(ag).max())
     d_me = float(scale_contact[0])
     # first step after closure: a fraction of the local contact half-period π·√(m/k_eff)
@@ -139,8 +218,6 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     fopt[kn.F_DTREC] = dt_rec
     fopt[kn.F_HCONTACT] = h_contact
     fopt[kn.F_GAPTOL] = 1e-3 * integ.rtol * d_me
-    nel, ncon = packed.el_code.size, packed.c_code.size
-    limits = pack_limits(() if limits is None else tuple(limits), packed)
     n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
     iopt = np.zeros(kn.N_IOPT, dtype=np.int64)
     iopt[kn.I_MAXIT], iopt[kn.I_RECORD_EVERY] = integ.max_newton, integ.record_every
@@ -148,23 +225,30 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     iopt[kn.I_STOP_AT_LIMIT] = 1 if stop_at_limit else 0
     iopt[kn.I_N_STRUCT], iopt[kn.I_N_EXPLICIT] = packed.n_struct, n_explicit
     iopt[kn.I_METHOD] = METHOD_CODES[integ.method]
+    iopt[kn.I_RING] = 0 if history else 1
+    return Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
+                    err_ref=err_ref, scale_accel=scale_accel,
+                    limits=pack_limits(() if limits is None else tuple(limits), packed))
 
+
+def _bundles(packed, ag, u, v, settings):
+    """(:class:`Model`, :class:`State`, :class:`Work`): the model read by the loop, working
+    copies of the states it advances (the packed model stays reusable), its scratch."""
+    n, n_explicit = packed.n, settings.iopt[kn.I_N_EXPLICIT]
+    nel, ncon = packed.el_code.size, packed.c_code.size
     model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.r, ag=ag, el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
                   c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
-    # working copies of states (the packed model stays reusable)
-    state = State(t=np.zeros(1), h=np.array([fopt[kn.F_HMAX]]), ag_now=np.zeros(1), u=u, v=v,
-                  a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(), el_f=np.zeros(nel),
-                  el_d=np.zeros(nel), el_W=np.zeros(nel), c_H=packed.c_H.copy(),
-                  c_f=np.zeros(ncon), c_d=np.zeros(ncon), c_W=np.zeros(ncon),
-                  c_closed=np.zeros(ncon, dtype=np.int64), energy=np.zeros(kn.N_ENERGY),
-                  stats=np.zeros(kn.N_STATS, dtype=np.int64),
-                  first_exceed=np.full(limits.shape[0], -1.0),
+    state = State(t=np.zeros(1), h=np.array([settings.fopt[kn.F_HMAX]]), ag_now=np.zeros(1),
+                  u=u, v=v, a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(),
+                  el_f=np.zeros(nel), el_d=np.zeros(nel), el_W=np.zeros(nel),
+                  c_H=packed.c_H.copy(), c_f=np.zeros(ncon), c_d=np.zeros(ncon),
+                  c_W=np.zeros(ncon), c_closed=np.zeros(ncon, dtype=np.int64),
+                  energy=np.zeros(kn.N_ENERGY), stats=np.zeros(kn.N_STATS, dtype=np.int64),
+                  first_exceed=np.full(settings.limits.shape[0], -1.0),
                   pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
-                  pk_n=np.zeros(1, dtype=np.int64))
-    settings = Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
-                        err_ref=err_ref, scale_accel=scale_accel, limits=limits)
+                  pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)))
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
                 ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
@@ -172,9 +256,14 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 ev=np.zeros(n), de=np.zeros(kn.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]))
+    return model, state, work
 
-    # initial equilibrium: M·a0 = p0 − F(u0, v0)
-    ag0 = kern.ground_accel(ag, dt_rec, 0.0)
+
+def _start(kern, packed, model, state, settings, work, channels, history, integ, duration):
+    """The initial equilibrium M·a0 = p0 − F(u0, v0), the running peaks and episodes started,
+    the recorder: a :class:`_Start`."""
+    n, nel, ncon = packed.n, packed.el_code.size, packed.c_code.size
+    ag0 = kern.ground_accel(model.ag, settings.fopt[kn.F_DTREC], 0.0)
     state.ag_now[0] = ag0
     kern.internal_force(model, state, work)
     state.a[:] = np.linalg.solve(packed.M, -packed.r * ag0 - state.F)
@@ -187,75 +276,129 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
                 f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
                 f"{state.c_d[c]:.3g} in); start the base mat inside the gap.")
 
-    e_initial = _initial_energy(kern, packed, u, v)
+    e_initial = _initial_energy(kern, packed, state.u, state.v)
     unknown = set(channels) - set(CHANNELS)
     if unknown:
         raise ValueError(f"channels: {sorted(unknown)} unknown; choose from {CHANNELS}.")
     chan = set(channels) | {"displacement", "contacts"}
-    widths = dict(u=n, v=n if "velocity" in chan else 0, a=n if "acceleration" in chan else 0,
-                  el=nel if "elements" in chan else 0, c=ncon)
-    # room for every record sample plus contact steps (grown by doubling when short, up to
-    # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
-    # points included
-    per_sample = 2.0 if integ.method == "dp5" else 1.2
-    max_cap = int(integ.record_budget // _row_bytes(widths))
-    cap = min(int(per_sample * duration / dt_rec / integ.record_every) + 1024, max_cap)
-    rec = _recorder(cap, widths)
+    if history:
+        widths = dict(u=n, v=n if "velocity" in chan else 0,
+                      a=n if "acceleration" in chan else 0, el=nel if "elements" in chan else 0,
+                      c=ncon)
+        # room for every record sample plus contact steps (grown by doubling when short, up to
+        # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
+        # points included
+        per_sample = 2.0 if integ.method == "dp5" else 1.2
+        cap = min(int(per_sample * duration / settings.fopt[kn.F_DTREC] / integ.record_every)
+                  + 1024, _max_rows(integ, widths))
+    else:  # what the peaks and the episodes read: the last samples' contact channels
+        widths = dict(u=0, v=0, a=0, el=0, c=ncon)
+        cap = RING_ROWS
+    rec = _recorder(cap, widths, IMPACT_ROWS + 3 * ncon)
+    kern.start_episodes(state)
+    return _Start(ag0, a_initial, el_f_initial, el_d_initial, e_initial, rec, widths)
 
-    cpu0 = _time.process_time()
+
+def _max_rows(integ, widths):
+    """The most samples the record budget holds."""
+    return int(integ.record_budget // _row_bytes(widths))
+
+
+def _advance(kern, model, state, settings, work, rec, integ, duration, progress, chunks, packed,
+             history):
+    """Run the loop to the end, in chunks when there is a progress display, growing the
+    recorder when it is short: (:class:`Status`, the recorder)."""
     # with a progress display the loop returns 20 times to report; without, it runs through
     if chunks is None:
         chunks = 20 if progress is not None else 1
     targets = np.linspace(0, duration, chunks + 1)[1:]
     k = 0
     while True:
-        status = kern.run_chunk(targets[k], model, state, settings, work, rec)
-        if status == kn.BUFFER_FULL:
-            if cap >= max_cap:
-                raise RecordBudgetError(_budget_message(state.t[0], duration, cap, integ))
-            cap = min(2 * cap, max_cap)
-            rec = _grow(rec, cap)
+        code = kern.run_chunk(targets[k], model, state, settings, work, rec)
+        t = float(state.t[0])
+        if code == kn.BUFFER_FULL:
+            cap = rec.t.shape[0]
+            if history and state.stats[kn.S_NOUT] >= cap:
+                max_cap = _max_rows(integ, _widths(rec))
+                if cap >= max_cap:
+                    return Status("budget", t, _budget_message(t, duration, cap, integ),
+                                  RecordBudgetError), rec
+                rec = _grow(rec, min(2 * cap, max_cap))
+            else:  # the impact table is short
+                rec = rec._replace(episodes=_grown(rec.episodes, 2 * rec.episodes.shape[0]))
             continue
-        if status in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
-            raise SolverError(_failure_message(packed, state.t[0], u, v, state.c_closed, integ,
-                                               stalled=status == kn.STEP_TOO_SMALL))
+        if code in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
+            stalled = code == kn.STEP_TOO_SMALL
+            return Status("stalled" if stalled else "failed", t,
+                          _failure_message(packed, t, state.u, state.v, state.c_closed, integ,
+                                           stalled=stalled), SolverError), rec
         if progress is not None:
-            progress(state.t[0], duration)
-        if status in (kn.DONE, kn.LIMIT_REACHED):
-            break
+            progress(t, duration)
+        if code == kn.DONE:
+            return Status("done", t, "", None), rec
+        if code == kn.LIMIT_REACHED:
+            return Status("limit", t, "", None), rec
         k = min(k + 1, chunks - 1)
-    kern.finish_peaks(model, state, settings, rec)
-    cpu = _time.process_time() - cpu0
 
+
+def _widths(rec):
+    """The column counts of the recorder's channels (the keys of :data:`RECORDER_COLUMNS`)."""
+    return dict(u=rec.u.shape[1], v=rec.v.shape[1], a=rec.a.shape[1], el=rec.ef.shape[1],
+                c=rec.cf.shape[1])
+
+
+def _history(kern, backend, packed, model, state, rec, start, history, status, cpu, u0, v0):
+    """The :class:`RawHistory` of the run (its rows trimmed to the samples recorded)."""
+    n, nel, ncon = packed.n, packed.el_code.size, packed.c_code.size
+    widths = start.widths
     stats = state.stats
     m = stats[kn.S_NOUT]
-    t0 = np.zeros(1)
-    hist = RawHistory(
-        t=np.concatenate([t0, rec.t[:m]]),
-        u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
-        v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
-                     rec.v[:m]]),
-        a=np.vstack([a_initial[:widths["a"]], rec.a[:m]]),
-        ag=np.concatenate([[ag0], rec.ag[:m]]),
-        el_force=np.vstack([el_f_initial[:widths["el"]], rec.ef[:m]]),
-        el_deformation=np.vstack([el_d_initial[:widths["el"]], rec.ed[:m]]),
-        contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
-        indentation=np.vstack([-packed.c_gap[None, :], rec.cd[:m]]),
-        indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
-        closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
+    if history:
+        rows = dict(
+            t=np.concatenate([np.zeros(1), rec.t[:m]]),
+            u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
+            v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
+                         rec.v[:m]]),
+            a=np.vstack([start.a[:widths["a"]], rec.a[:m]]),
+            ag=np.concatenate([[start.ag0], rec.ag[:m]]),
+            el_force=np.vstack([start.el_f[:widths["el"]], rec.ef[:m]]),
+            el_deformation=np.vstack([start.el_d[:widths["el"]], rec.ed[:m]]),
+            contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
+            indentation=np.vstack([packed.c_B @ _initial_u(u0, n) - packed.c_gap, rec.cd[:m]]),
+            indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
+            closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
+        )
+    else:  # no rows, every column
+        rows = {name: np.zeros((0,) + (() if w is None else (dict(n=n, el=nel, c=ncon)[w],)),
+                               dtype=np.int8 if name == "closed" else np.float64)
+                for name, w in HISTORY_ARRAYS.items()}
+    return RawHistory(
+        **rows,
         stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
                    rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
-                   cpu_seconds=cpu, recorded=int(m), kernels=backend,
+                   cpu_seconds=cpu, recorded=int(m) if history else 0, kernels=backend,
                    t_reached=float(state.t[0])),
-        energy=_energy(kern, packed, u, v, state.el_S, state.el_W, state.c_H, state.c_d,
-                       state.c_W, state.c_closed, state.energy, e_initial),
+        energy=_energy(kern, packed, state.u, state.v, state.el_S, state.el_W, state.c_H,
+                       state.c_d, state.c_W, state.c_closed, state.energy, start.energy),
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
-        stopped_at_limit=bool(status == kn.LIMIT_REACHED),
+        stopped_at_limit=status.code == "limit",
         peaks=state.pk.copy(),
+        impacts=rec.episodes[:stats[kn.S_IMPACTS]].copy(),
     )
-    hist.indentation[0] = packed.c_B @ hist.u[0] - packed.c_gap if ncon else hist.indentation[0]
-    return hist
+
+
+def _initial_u(u0, n):
+    """The initial displacements [in] (zeros when not given)."""
+    return np.zeros(n) if u0 is None else np.asarray(u0, dtype=float)
+
+
+HISTORY_ARRAYS = dict(t=None, u="n", v="n", a="n", ag=None, el_force="el", el_deformation="el",
+                      contact_force="c", indentation="c", indentation_rate="c", closed="c")
+"""The :class:`RawHistory` fields that hold one row per recorded sample, and the key of their
+width (n DOFs, el elements, c contacts; None: one value per sample)."""
+IMPACT_ROWS = 64
+"""The impact table's first room [episodes] (doubled when short)."""
 
 
 ACCELERATION_FRACTION = 0.15
@@ -373,13 +516,16 @@ def _row_bytes(widths):
     """Bytes of one recorded sample for the channel ``widths``."""
     return sum(np.dtype(np.int8 if name == "closed" else np.float64).itemsize
                * (1 if RECORDER_COLUMNS[name] is None else widths[RECORDER_COLUMNS[name]])
-               for name in Recorder._fields)
+               for name in RECORDER_COLUMNS)
 
 
-def _recorder(cap, widths):
-    """Empty history buffers for ``cap`` samples."""
+def _recorder(cap, widths, impact_rows):
+    """Empty history buffers for ``cap`` samples and an impact table of ``impact_rows``."""
     bufs = []
     for name in Recorder._fields:
+        if name == "episodes":
+            bufs.append(np.zeros((impact_rows, N_IMPACT)))
+            continue
         key = RECORDER_COLUMNS[name]
         shape = (cap,) if key is None else (cap, widths[key])
         bufs.append(np.zeros(shape, dtype=np.int8 if name == "closed" else np.float64))
@@ -387,46 +533,43 @@ def _recorder(cap, widths):
 
 
 def _grow(rec, cap):
-    """The buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
-    out = []
-    for arr in rec:
-        new = np.zeros((cap,) + arr.shape[1:], dtype=arr.dtype)
-        new[: arr.shape[0]] = arr
-        out.append(new)
-    return Recorder(*out)
+    """The history buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
+    return Recorder(*(arr if name == "episodes" else _grown(arr, cap)
+                      for name, arr in zip(Recorder._fields, rec)))
+
+
+def _grown(arr, rows):
+    """``arr`` with room for ``rows`` rows (its rows kept, zeros after)."""
+    new = np.zeros((rows,) + arr.shape[1:], dtype=arr.dtype)
+    new[: arr.shape[0]] = arr
+    return new
 
 
 def _quadratic(x, A):
-    """xᵀ·A·x, correctly rounded sum of its terms: the same bits on every machine (numpy's
-    matrix products take machine-dependent SIMD paths and differ in the last bit)."""
-    n = len(x)
-    return math.fsum(float(x[i]) * float(A[i, j]) * float(x[j]) for i in range(n)
-                     for j in range(n) if A[i, j] != 0.0)
+    """xᵀ·A·x, correctly rounded sum of its terms x_i·A_ij·x_j (A_ij ≠ 0): the same bits on
+    every machine (numpy's matrix products take machine-dependent SIMD paths and differ in the
+    last bit; an exactly rounded sum does not depend on the order of its terms)."""
+    x = np.asarray(x, dtype=float)
+    return math.fsum(((x[:, None] * A) * x[None, :])[A != 0.0].tolist())
 
 
 def _initial_energy(kern, packed, u, v):
     """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
-    material_commit, material_recoverable_energy = (kern.material_commit,
-                                                    kern.material_recoverable_energy)
     e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
-    for k in range(packed.el_code.size):
-        i, j = packed.el_i[k], packed.el_j[k]
-        d = u[i] - (u[j] if j >= 0 else 0.0)
-        s = packed.el_S[k].copy()
-        material_commit(packed.el_code[k], packed.el_P[k], s, d, 0.0)
-        e += material_recoverable_energy(packed.el_code[k], packed.el_P[k], s)
+    el = np.zeros(packed.el_code.size)
+    kern.initial_element_energies(packed.el_i, packed.el_j, packed.el_code, packed.el_P,
+                                  packed.el_S, u, np.zeros(packed.el_S.shape[1]), el)
+    for x in el.tolist():
+        e += x
     return float(e)
 
 
 def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
-    contact_stored_energy = kern.contact_stored_energy
-    material_recoverable_energy = kern.material_recoverable_energy
     kinetic = 0.5 * _quadratic(v, packed.M)
     linear_strain = 0.5 * _quadratic(u, packed.K)
-    el_rec = np.array([material_recoverable_energy(packed.el_code[e], packed.el_P[e], el_S[e])
-                       for e in range(packed.el_code.size)])
-    c_rec = np.array([contact_stored_energy(packed.c_code[c], packed.c_P[c], c_H[c], c_d[c])
-                      if c_closed[c] else 0.0 for c in range(packed.c_code.size)])
+    el_rec, c_rec = np.zeros(packed.el_code.size), np.zeros(packed.c_code.size)
+    kern.stored_energies(packed.el_code, packed.el_P, el_S, packed.c_code, packed.c_P, c_H, c_d,
+                         c_closed, el_rec, c_rec)
     el_diss = el_W - el_rec
     iso = [e for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
     sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]

@@ -219,7 +219,7 @@ COLUMNS = (
     Column("pounding", "bool", "",
            lambda r: bool(r.peaks["impacts_pos"] + r.peaks["impacts_neg"] > 0),
            "any impact", "peaks"),
-    Column("t_reached", "float64", "s", lambda r: float(r.time[-1]),
+    Column("t_reached", "float64", "s", lambda r: float(r.meta["stats"]["t_reached"]),
            "the run's last time (the collapse time when it stopped there)", "peaks"),
     Column("cpu_seconds", "float64", "s", None,
            "CPU of the whole run in its thread: model lookup, record scaling, solver, peaks "

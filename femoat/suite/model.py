@@ -40,16 +40,13 @@ def build_variation(tables, stop_on_collapse=True, base_dir=Path(".")):
                      scenario.collapse_from_dict(collapse))
 
 
-PEAK_CHANNELS = ("displacement", "velocity", "acceleration", "contacts")
-"""The histories a row's peaks need (the element forces and deformations are not recorded
-unless the run's history is saved: the step sequence, and so every peak, is the same)."""
-
-
 def run_variation(variation, motion, extra_time, history=False):
     """Run ``variation`` under ``motion``; return its RunResult, whose ``collapse`` holds the
     time [s] each criterion was first reached (None if not). ``history``: record every
-    channel."""
+    channel; without it the run keeps no history (its peaks and impact table are kept inside
+    the solver's loop, the same values: the step sequence does not depend on what is
+    recorded)."""
     from femoat.run import run
 
     return run(variation.pounding, motion, variation.integrator, extra_time=extra_time,
-               collapse=variation.criteria, channels=None if history else PEAK_CHANNELS)
+               collapse=variation.criteria, history=history)
