@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 from femoat.contact.laws import make_law
-from femoat.ground_motions import GroundMotion
 from femoat.integration import Integrator, RecordBudgetError, SolverError, integrate, solve
 from femoat.paper import paper_model, paper_motion
 from femoat.structure.building import Building

@@ -38,6 +38,7 @@ starts (capturing δ̇₀) or ends.
 """
 
 import numpy as np
+
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import (
     contact_closure,
