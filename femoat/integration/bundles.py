@@ -30,7 +30,7 @@ Model = namedtuple("Model", ["M", "C", "K", "r", "ag", "el_i", "el_j", "el_code"
                              "c_gap", "c_code", "c_P", "Minv"])
 State = namedtuple("State", ["t", "h", "ag_now", "u", "v", "a", "F", "el_S", "el_f", "el_d",
                              "el_W", "c_H", "c_f", "c_d", "c_W", "c_closed", "energy", "stats",
-                             "first_exceed", "pk", "pk_ring", "pk_n", "ep"])
+                             "first_exceed", "pk", "pk_ring", "pk_n", "ep", "ctl"])
 Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact", "err_ref",
                                    "scale_accel", "limits"])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",

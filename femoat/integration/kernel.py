@@ -814,10 +814,17 @@ def _limit_reached(t, model, state, settings):
 
 
 @njit(cache=True, inline="always")
-def _stop(status, t, h, state):
-    """Leave the loop at time ``t`` with the next step ``h`` kept for the next call."""
+def _stop(status, t, h, h_cruise, shortened, landing, since_record, state):
+    """Leave the loop at time ``t`` with the controller's state kept for the next call (the
+    next step ``h``, the cruising step, a pending landing and the samples since the last record),
+    so that a run does not depend on where it was re-entered (a grown recorder, a progress
+    display's chunks)."""
     state.t[0] = t
     state.h[0] = h
+    state.h[1] = h_cruise
+    state.ctl[0] = 1 if shortened else 0
+    state.ctl[1] = landing
+    state.ctl[2] = since_record
     return status
 
 
@@ -833,19 +840,20 @@ def run_chunk(t_stop, model, state, settings, work, rec):
     impacts_room = rec.episodes.shape[0] - 3 * model.c_gap.size
     c_closed, stats = state.c_closed, state.stats
     t, h = state.t[0], state.h[0]
-    t_goal = min(t_stop, t_end)
-    since_record = stalls = 0
-    shortened = False
-    landing = -1  # the contact whose located separation the shortened step lands on
-    h_cruise = h  # the explicit method's step before landings and sample cuts
+    t_goal = min(t_stop, t_end)  # this call returns after the first step reaching it
+    stalls = 0
+    h_cruise = state.h[1]  # the explicit method's step before landings and sample cuts
+    shortened = state.ctl[0] == 1
+    landing = state.ctl[1]  # the contact whose located separation the shortened step lands on
+    since_record = state.ctl[2]
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
         stalls += 1
         if stalls > 100000:  # no step accepted after 100000 attempts: report, don't spin
-            return _stop(STEP_TOO_SMALL, t, h, state)
+            return _stop(STEP_TOO_SMALL, t, h, h_cruise, shortened, landing, since_record, state)
         if (stats[S_NOUT] >= rec.t.size and not ring) or stats[S_IMPACTS] > impacts_room:
-            return _stop(BUFFER_FULL, t, h, state)
+            return _stop(BUFFER_FULL, t, h, h_cruise, shortened, landing, since_record, state)
         h_asked = h
-        hh, t1 = _step_end(t, h, t_goal, shortened, fopt, model.ag.size)
+        hh, t1 = _step_end(t, h, t_end, shortened, fopt, model.ag.size)
         ag1 = ground_accel(model.ag, fopt[F_DTREC], t1)
         any_closed = _any_closed(c_closed)
         explicit_now = method == METHOD_DP5 and not any_closed
@@ -853,7 +861,8 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             err = explicit.explicit_step(hh, ag1, model, state, settings, work)
             if not np.isfinite(err):
                 if hh <= hmin:
-                    return _stop(NEWTON_FAILED, t, h, state)
+                    return _stop(NEWTON_FAILED, t, h, h_cruise, shortened, landing,
+                                 since_record, state)
                 stats[S_REJECT_ERR] += 1
                 h = max(hh * explicit.SHRINK_MIN, hmin)
                 continue
@@ -865,7 +874,8 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             if not newton_step(hh, ag1, any_closed, model, state, settings, work):
                 h, failed = _after_newton_failure(t, hh, model, state, settings, work, rec)
                 if failed:
-                    return _stop(NEWTON_FAILED, t, h, state)
+                    return _stop(NEWTON_FAILED, t, h, h_cruise, shortened, landing,
+                                 since_record, state)
                 continue
             err = local_error(hh, any_closed, model, state, settings, work)
             if err > 1.0 and hh > hmin:
@@ -924,10 +934,10 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if toggled and now_closed:
             h = min(h, _first_contact_step(v_close, H_START * h_contact, h_contact, gap_tol))
         since_record += 1
-        if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_goal:
+        if since_record >= rec_every or now_closed or any_closed or toggled or t >= t_end:
             since_record = 0
             record(t, model, state, settings, rec)
         if _limit_reached(t, model, state, settings):
-            return _stop(LIMIT_REACHED, t, h, state)
+            return _stop(LIMIT_REACHED, t, h, h_cruise, shortened, landing, since_record, state)
     return _stop(DONE if t >= t_end * (1.0 - 1e-15) or t_end - t <= 1e-14 else STOPPED, t, h,
-                 state)
+                 h_cruise, shortened, landing, since_record, state)

@@ -240,7 +240,8 @@ def _bundles(packed, ag, u, v, settings):
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
                   c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
-    state = State(t=np.zeros(1), h=np.array([settings.fopt[kn.F_HMAX]]), ag_now=np.zeros(1),
+    h0 = settings.fopt[kn.F_HMAX]
+    state = State(t=np.zeros(1), h=np.array([h0, h0]), ag_now=np.zeros(1),
                   u=u, v=v, a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(),
                   el_f=np.zeros(nel), el_d=np.zeros(nel), el_W=np.zeros(nel),
                   c_H=packed.c_H.copy(), c_f=np.zeros(ncon), c_d=np.zeros(ncon),
@@ -248,7 +249,8 @@ def _bundles(packed, ag, u, v, settings):
                   energy=np.zeros(kn.N_ENERGY), stats=np.zeros(kn.N_STATS, dtype=np.int64),
                   first_exceed=np.full(settings.limits.shape[0], -1.0),
                   pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
-                  pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)))
+                  pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)),
+                  ctl=np.array([0, -1, 0], dtype=np.int64))
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
                 ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
