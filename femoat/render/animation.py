@@ -48,6 +48,27 @@ class BuildingLayout:
             raise ValueError("BuildingLayout.impact_below_top must be below the wall height [in]")
 
 
+def frame_times(t, fps, speed, start, end, max_frames):
+    """The frame times [s] of a GIF of the run sampled at ``t`` [s], from ``start`` to ``end``
+    (None: the run's end), ``fps`` frames per second of GIF showing ``speed`` simulated seconds
+    per second; the checks name the argument and the fix."""
+    end = float(t[-1]) if end is None else end
+    for name, value in (("fps", fps), ("speed", speed)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
+            raise ValueError(f"{name} = {value!r} must be a positive number")
+    if not (isinstance(start, (int, float)) and isinstance(end, (int, float))
+            and t[0] <= start < end <= t[-1] + 1e-12):
+        raise ValueError(f"start = {start!r} and end = {end!r} [s] must satisfy "
+                         f"{t[0]:g} <= start < end <= {t[-1]:g} (the run)")
+    step = speed / fps
+    n = int(np.floor((end - start) / step + 1e-9)) + 1
+    if n > max_frames:
+        raise ValueError(f"{n} frames for {end - start:.3g} s at fps {fps:g} and speed {speed:g}: "
+                         f"more than max_frames = {max_frames}; raise speed, lower fps or show a "
+                         "shorter [start, end]")
+    return start + step * np.arange(n)
+
+
 def frame_states(result, fps=20, speed=1.0, start=0.0, end=None, max_frames=400):
     """Decimate a run to the frame times.
 
@@ -60,19 +81,8 @@ def frame_states(result, fps=20, speed=1.0, start=0.0, end=None, max_frames=400)
     (bool, same shape).
     """
     t = result.time
-    end = float(t[-1]) if end is None else float(end)
-    if not (fps > 0 and speed > 0):
-        raise ValueError(f"fps = {fps!r} and speed = {speed!r} must be > 0")
-    if not (t[0] <= start < end <= t[-1] + 1e-12):
-        raise ValueError(f"start = {start!r} and end = {end!r} [s] must satisfy "
-                         f"{t[0]:g} <= start < end <= {t[-1]:g} (the run)")
-    step = speed / fps
-    n = int(np.floor((end - start) / step + 1e-9)) + 1
-    if n > max_frames:
-        raise ValueError(f"{n} frames for {end - start:.3g} s at fps {fps:g} and speed {speed:g}: "
-                         f"more than max_frames = {max_frames}; raise speed, lower fps or show a "
-                         "shorter [start, end]")
-    times = start + step * np.arange(n)
+    times = frame_times(t, fps, speed, start, end, max_frames)
+    n = times.size
     disp = np.column_stack([np.interp(times, t, result.displacement[:, j])
                             for j in range(result.displacement.shape[1])])
     wall = result.wall_displacement()

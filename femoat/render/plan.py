@@ -21,7 +21,7 @@ import numpy as np
 
 from femoat.atomic import atomic_path
 from femoat.plotting.plan_history import check_history
-from femoat.render.animation import _shared_palette
+from femoat.render.animation import _shared_palette, frame_times
 from femoat.render.backend import import_pyvista
 
 WALL_IDLE, WALL_HIT, MAT_COLOR = "silver", "red", "steelblue"
@@ -64,21 +64,8 @@ def plan_frames(history, fps=20, speed=1.0, start=0.0, end=None, max_frames=400)
     """
     h = check_history(history)
     t = h.time
-    end = float(t[-1]) if end is None else end
-    for name, value in (("fps", fps), ("speed", speed)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise ValueError(f"{name} = {value!r} must be a positive number")
-    if not (isinstance(start, (int, float)) and isinstance(end, (int, float))
-            and t[0] <= start < end <= t[-1] + 1e-12):
-        raise ValueError(f"start = {start!r} and end = {end!r} [s] must satisfy "
-                         f"{t[0]:g} <= start < end <= {t[-1]:g} (the run)")
-    step = speed / fps
-    n = int(np.floor((end - start) / step + 1e-9)) + 1
-    if n > max_frames:
-        raise ValueError(f"{n} frames for {end - start:.3g} s at fps {fps:g} and speed {speed:g}: "
-                         f"more than max_frames = {max_frames}; raise speed, lower fps or show a "
-                         "shorter [start, end]")
-    times = start + step * np.arange(n)
+    times = frame_times(t, fps, speed, start, end, max_frames)
+    n = times.size
     base = np.column_stack([np.interp(times, t, h.base[:, j]) for j in range(2)])
     nw = len(h.sides)
     force = np.zeros((n, nw))
