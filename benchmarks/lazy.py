@@ -68,7 +68,7 @@ def main():
                              ("displacement + contacts", ("displacement", "contacts"), 1),
                              ("displacement + contacts, every 10th", ("displacement", "contacts"), 10)):
         t, r = best_cpu(lambda: run(model, gm, Integrator(record_every=every), channels=ch))
-        nbytes = sum(getattr(r, k).nbytes for k in r._ARRAYS)
+        nbytes = sum(a.nbytes for a in r.arrays.values())
         print(f"   {label:38s} {t * 1e3:6.1f} ms  {r.time.size:6d} rows  {nbytes / 1e6:6.2f} MB"
               f"  peak F {r.peaks['peak_impact_force']:.4f} kip")
 

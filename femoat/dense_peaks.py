@@ -63,7 +63,7 @@ def quintic_accel_abs_max(t, u, v, a, ag, smooth):
 
     t [s] (m samples); u [in], v [in/s], a [in/s²] of shape (m, k); ag [in/s²] (m,); smooth a
     boolean (m − 1,). Returns k floats [in/s²]. (The solver keeps the same crests as it records,
-    ``femoat.integration.peaks._quintic_accel_crest``; tests/test_kernel_peaks.py ties the two.)
+    ``femoat.integration.recording.peaks._quintic_accel_crest``; tests/test_kernel_peaks.py ties the two.)
     """
     t = np.asarray(t, dtype=float)
     u, v, a = (np.asarray(q, dtype=float) for q in (u, v, a))

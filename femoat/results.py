@@ -8,7 +8,6 @@ the core free of xarray/netCDF4 (heavy, and not needed elsewhere), while staying
 """
 
 import json
-from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -19,40 +18,26 @@ from femoat.dense_peaks import (
     parabolic_peak,
     quintic_accel_abs_max,
 )
+from femoat.integration.recording.channels import CHANNELS, UNITS
 from femoat.structure.roles import STORY, role_of
 from femoat.units import G
 
-ARRAY_UNITS = {
-    "time": "s",
-    "displacement": "in (relative to ground, per DOF)",
-    "velocity": "in/s (relative, per DOF)",
-    "acceleration": "in/s^2 (relative, per DOF)",
-    "ground_acceleration": "in/s^2",
-    "element_force": "kip (per element)",
-    "element_deformation": "in (per element)",
-    "contact_force": "kip (per contact)",
-    "indentation": "in (per contact; negative = open gap)",
-    "indentation_rate": "in/s (per contact; positive = approaching)",
-    "contact_closed": "1 while a contact episode is open",
-}
+ARRAY_UNITS = UNITS
+"""{history: unit} (:mod:`femoat.integration.recording.channels`), carried in every file."""
 
 
-@dataclass
 class RunResult:
-    """A building run (units in brackets on each accessor)."""
+    """A building run: its histories, one attribute per channel of
+    :mod:`femoat.integration.recording.channels` (``time`` [s], ``displacement`` [in], ...;
+    one row per recorded sample, none when the run kept no history), and ``meta`` (names,
+    impacts, peaks, energies, solver statistics). Units in brackets on each accessor."""
 
-    time: np.ndarray
-    displacement: np.ndarray
-    velocity: np.ndarray
-    acceleration: np.ndarray
-    ground_acceleration: np.ndarray
-    element_force: np.ndarray
-    element_deformation: np.ndarray
-    contact_force: np.ndarray
-    indentation: np.ndarray
-    indentation_rate: np.ndarray
-    contact_closed: np.ndarray
-    meta: dict = field(default_factory=dict)
+    def __init__(self, arrays, meta=None):
+        missing = [c.name for c in CHANNELS if c.name not in arrays]
+        if missing:
+            raise ValueError(f"RunResult: the histories {missing} are missing.")
+        self.arrays = {c.name: arrays[c.name] for c in CHANNELS}
+        self.meta = {} if meta is None else meta
 
     # ---- construction -------------------------------------------------------------------
     @classmethod
@@ -81,9 +66,7 @@ class RunResult:
             units=ARRAY_UNITS,
             info=info or {},
         )
-        r = cls(hist.t, hist.u, hist.v, hist.a, hist.ag, hist.el_force, hist.el_deformation,
-                hist.contact_force, hist.indentation, hist.indentation_rate,
-                hist.closed.astype(np.int8), meta)
+        r = cls(hist.arrays, meta)
         r.meta["impacts"] = _impact_rows(hist.impacts, meta["contact_names"])
         r.meta["peaks"] = r._peaks(hist.peaks)
         return r
@@ -154,7 +137,7 @@ class RunResult:
     # ---- impacts and peaks ---------------------------------------------------------------
     def _impact_table(self):
         """The impact table read from the recorded history (the solver keeps the same table
-        sample by sample, :mod:`femoat.integration.episodes`: this is its reference)."""
+        sample by sample, :mod:`femoat.integration.recording.episodes`: this is its reference)."""
         rows = []
         t = self.time
         for c, name in enumerate(self.meta["contact_names"]):
@@ -219,7 +202,7 @@ class RunResult:
     def _continuous(self, kernel):
         """(base displacement, drifts, walls, absolute accelerations or None, base velocity or
         None, indentation): from the solver's running peaks (``kernel``, the layout of
-        :mod:`femoat.integration.peaks`) when given, else from the recorded history."""
+        :mod:`femoat.integration.recording.peaks`) when given, else from the recorded history."""
         ns, nc = self.meta["n_struct"], len(self.meta["contact_names"])
         if kernel is not None:
             kernel = [float(x) for x in kernel]
@@ -244,7 +227,7 @@ class RunResult:
         """Peaks of the continuous solution: displacements and drifts inside each step from the
         Hermite interpolant; accelerations at the step ends, and inside the fifth-order steps
         from the quintic interpolant. ``kernel``: the solver's own running peaks
-        (:mod:`femoat.integration.peaks`, the same interpolants sample by sample), else they are
+        (:mod:`femoat.integration.recording.peaks`, the same interpolants sample by sample), else they are
         read from the recorded history (:mod:`femoat.dense_peaks`)."""
         imp = self.meta["impacts"]
         base, peak_drift, peak_wall, peak_acc, velocity, indentation = self._continuous(kernel)
@@ -306,16 +289,11 @@ class RunResult:
         return self.meta["energy"]
 
     # ---- persistence ---------------------------------------------------------------------
-    _ARRAYS = ("time", "displacement", "velocity", "acceleration", "ground_acceleration",
-               "element_force", "element_deformation", "contact_force", "indentation",
-               "indentation_rate", "contact_closed")
-
     def save(self, path):
-        """Write to ``path`` (.npz), atomically."""
-        arrays = {k: getattr(self, k) for k in self._ARRAYS}
+        """Write to ``path`` (.npz), atomically: every channel under its name, and ``meta``."""
         with atomic_path(path) as tmp:
             with open(tmp, "wb") as fh:
-                np.savez_compressed(fh, meta=np.array(json.dumps(self.meta)), **arrays)
+                np.savez_compressed(fh, meta=np.array(json.dumps(self.meta)), **self.arrays)
 
     @classmethod
     def load(cls, path):
@@ -323,15 +301,28 @@ class RunResult:
         try:
             with np.load(path, allow_pickle=False) as z:
                 meta = json.loads(str(z["meta"]))
-                arrays = {k: z[k] for k in cls._ARRAYS}
+                arrays = {c.name: z[c.name] for c in CHANNELS}
         except (OSError, KeyError, ValueError) as exc:
             raise ValueError(f"{path}: not a femoat result file ({exc}).") from None
-        return cls(**arrays, meta=meta)
+        return cls(arrays, meta)
+
+
+
+def _channel(name, unit):
+    def get(self):
+        return self.arrays[name]
+    get.__doc__ = f"The {name.replace('_', ' ')} history [{unit}]."
+    return property(get)
+
+
+for _c in CHANNELS:
+    setattr(RunResult, _c.name, _channel(_c.name, _c.unit))
+del _c
 
 
 def _impact_rows(table, contact_names):
     """The impact table (dicts, by start, ties in contact order) from the solver's episode rows
-    (columns :data:`femoat.integration.episodes.IMPACT_FIELDS`)."""
+    (columns :data:`femoat.integration.recording.episodes.IMPACT_FIELDS`)."""
     rows = [dict(side=contact_names[int(c)], start=float(start), duration=float(duration),
                  approach_velocity=float(v), peak_force=float(f), max_indentation=float(d),
                  impulse=float(p))

@@ -1,4 +1,4 @@
-"""The impact table kept inside the compiled loop (femoat.integration.episodes) equals the one
+"""The impact table kept inside the compiled loop (femoat.integration.recording.episodes) equals the one
 read afterwards from the recorded history (RunResult._impact_table), and a run that keeps no
 history (run(history=False), every suite run) has the same peaks and impact table."""
 

@@ -1,4 +1,4 @@
-"""The solver's running peaks (femoat.integration.peaks, kept sample by sample inside the
+"""The solver's running peaks (femoat.integration.recording.peaks, kept sample by sample inside the
 compiled loop) equal the peaks read afterwards from the recorded history (femoat.dense_peaks)."""
 
 import numpy as np

@@ -8,13 +8,13 @@ named, not imported, so that the loader stays free of numba and of the solver.
 """
 
 EXPORTS = {
-    "run_chunk": "femoat.integration.kernel",
+    "run_chunk": "femoat.integration.driver",
     "ground_accel": "femoat.integration.forces",
     "internal_force": "femoat.integration.forces",
-    "start_peaks": "femoat.integration.peaks",
-    "finish_peaks": "femoat.integration.peaks",
-    "start_episodes": "femoat.integration.episodes",
-    "finish_episodes": "femoat.integration.episodes",
+    "start_peaks": "femoat.integration.recording.peaks",
+    "finish_peaks": "femoat.integration.recording.peaks",
+    "start_episodes": "femoat.integration.recording.episodes",
+    "finish_episodes": "femoat.integration.recording.episodes",
     "initial_element_energies": "femoat.integration.energy",
     "stored_energies": "femoat.integration.energy",
 }

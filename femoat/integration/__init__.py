@@ -3,7 +3,7 @@
 from femoat.integration.limits import Limit
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import (
-    RawHistory,
+    History,
     RecordBudgetError,
     SolverError,
     Status,
@@ -11,5 +11,5 @@ from femoat.integration.solve import (
     solve,
 )
 
-__all__ = ["Integrator", "Limit", "RawHistory", "RecordBudgetError", "SolverError", "Status",
+__all__ = ["Integrator", "Limit", "History", "RecordBudgetError", "SolverError", "Status",
            "integrate", "solve"]

@@ -1,40 +1,66 @@
-"""The compiled loop's data, grouped by role: plain tuples of arrays that numba compiles and the
-ahead-of-time module exports (:func:`femoat.integration.kernel.run_chunk` takes one of each).
+"""The compiled loop's data, grouped by role: plain tuples that numba compiles and the
+ahead-of-time module exports (:func:`femoat.integration.driver.run_chunk` takes one of each).
 
 * :class:`Model`: what is integrated (matrices, elements, contacts, the ground record, and
   ``Minv``, the inverse of the mass block the explicit step integrates); read only.
-* :class:`State`: what the loop advances (time, step, kinematics, committed element and contact
+* :class:`State`: what the loop advances (time, kinematics, committed element and contact
   states, energies, counters, limit-state times, the running peaks of
-  :mod:`femoat.integration.peaks` and each contact's running episode of
-  :mod:`femoat.integration.episodes`); the loop's only persistent output besides the recorder.
-* :class:`Settings`: the method, the step controller and the events (float and integer options,
-  see the ``F_*``/``I_*`` indices of :mod:`femoat.integration.kernel`), the error scales and the
-  limit states.
+  :mod:`~femoat.integration.recording.peaks` and each contact's running episode of
+  :mod:`~femoat.integration.recording.episodes`, and the step controller's state: the next
+  step ``h``, the cruising step ``h_cruise``, a pending landing on a kink or an event
+  ``shortened`` and the contact it lands on ``landing``, the samples since the last record
+  ``since_record``, each an array of one); the loop's only persistent output besides the
+  recorder.
+* :class:`Settings`: the method, the step controller and the events, by name (filled by
+  :func:`femoat.integration.solve.integrate` from the
+  :class:`~femoat.integration.settings.Integrator`), the error scales and the limit rows.
 * :class:`Work`: scratch arrays of a step (trial kinematics, forces, tangents, the linear system;
-  for the explicit step of :mod:`femoat.integration.explicit` its stages ``kv``, ``ka``,
+  for the explicit step of :mod:`femoat.integration.methods.dp5` its stages ``kv``, ``ka``,
   error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators).
-* :class:`Recorder`: the history buffers, one row per recorded step (sample k in row k modulo
-  their length: a ring of ``options.RING_ROWS`` rows when the run keeps no history); a channel
-  with zero columns is not recorded; and ``episodes``, the impact table (one row per finished
-  episode). A new channel is a new field here, its line in
-  :func:`~femoat.integration.kernel.record` and its width in
-  :data:`femoat.integration.solve.RECORDER_COLUMNS` (plus, to reach users, its entry in
-  ``RawHistory`` and :mod:`femoat.results`).
+* :class:`Recorder`: the history buffers of :mod:`~femoat.integration.recording.channels` (one
+  row per recorded sample; sample k in row k modulo their length: a ring of
+  ``recorder.RING_ROWS`` rows when the run keeps no history; a channel with zero columns is not
+  recorded), and ``episodes``, the impact table (one row per finished episode).
 
 Units: kip, in, s.
 """
 
 from collections import namedtuple
 
+from femoat.integration.recording.channels import BUFFERS
+
 Model = namedtuple("Model", ["M", "C", "K", "r", "ag", "el_i", "el_j", "el_code", "el_P", "c_B",
                              "c_gap", "c_code", "c_P", "Minv"])
-State = namedtuple("State", ["t", "h", "ag_now", "u", "v", "a", "F", "el_S", "el_f", "el_d",
+State = namedtuple("State", ["t", "ag_now", "u", "v", "a", "F", "el_S", "el_f", "el_d",
                              "el_W", "c_H", "c_f", "c_d", "c_W", "c_closed", "energy", "stats",
-                             "first_exceed", "pk", "pk_ring", "pk_n", "ep", "ctl"])
-Settings = namedtuple("Settings", ["fopt", "iopt", "scale_open", "scale_contact", "err_ref",
-                                   "scale_accel", "limits"])
+                             "first_exceed", "pk", "pk_ring", "pk_n", "ep",
+                             "h", "h_cruise", "shortened", "landing", "since_record"])
+Settings = namedtuple("Settings", [
+    # the method
+    "method",          # code of the open phase's method (femoat.integration.methods)
+    "quintic_peaks",   # bool: the open phase's acceleration crests from the quintic interpolant
+    "beta", "gamma", "alpha",  # Newmark/HHT-α [-]
+    "newton_tol",      # [-] Newton's convergence, relative to the DOF scales
+    "max_newton",      # Newton iterations per step attempt
+    "n_coupled",       # DOFs solved densely while no contact can act (lazy walls)
+    "n_explicit",      # DOFs the explicit step integrates (the building; the walls exactly)
+    "n_struct",        # building DOFs (the first ones)
+    # the step controller
+    "rtol",            # [-] local error tolerance
+    "h_max", "h_min",  # [s] largest and smallest step
+    "t_end",           # [s] the run's end
+    "dt_record",       # [s] the ground record's sample interval
+    "scale_open", "scale_contact", "err_ref", "scale_accel",  # error scales (solve.error_scales)
+    # contact events
+    "h_contact",       # [s] the step after a closure
+    "gap_tol",         # [in] a crossing is located within this of δ = 0
+    # recording and limits
+    "record_every",    # keep every k-th step of the open phase
+    "ring",            # bool: the recorder is a ring (a run without history)
+    "stop_at_limit",   # bool: a criterion row ends the run (a runaway row always does)
+    "limits",          # the limit rows (femoat.integration.limits)
+])
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",
                            "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
                            "wscratch", "s_tmp"])
-Recorder = namedtuple("Recorder", ["t", "u", "v", "a", "ag", "ef", "ed", "cf", "cd", "cv",
-                                   "closed", "episodes"])
+Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])

@@ -1,7 +1,6 @@
 """Forces of the model at a state: the ground record, F = C·v + K·u + element and contact
 forces with their tangents, and the small dense solver. Shared by every integration method
-(:mod:`femoat.integration.kernel` for Newmark/HHT, :mod:`femoat.integration.explicit` for the
-explicit Runge-Kutta step of the open phase).
+(:mod:`femoat.integration.methods`), the events and the recorder.
 
 Units: kip, in, s.
 """
@@ -26,6 +25,15 @@ def ground_accel(ag, dt_rec, t):
         return 0.0
     w = x - i
     return (1.0 - w) * ag[i] + w * ag[i + 1]
+
+
+@njit(cache=True, inline="always")
+def contact_rate(c_B, c, v):
+    """δ̇ [in/s] of contact ``c`` at velocities ``v``."""
+    dd = 0.0
+    for i in range(v.size):
+        dd += c_B[c, i] * v[i]
+    return dd
 
 
 @njit(cache=True)

@@ -4,12 +4,15 @@ contact phase is always Newmark/HHT-α) and step control."""
 import math
 from dataclasses import dataclass
 
+from femoat.integration import methods
 
-METHODS = ("newmark", "dp5")
-"""The integration methods of the open phase (see :class:`Integrator`)."""
+
+METHODS = methods.NAMES
+"""The integration methods of the open phase (see :class:`Integrator`), the registry of
+:mod:`femoat.integration.methods`."""
 MIN_RECORD_BUDGET = 1e6
 """The smallest ``Integrator.record_budget`` [bytes] (a few thousand samples)."""
-DEFAULT_RTOL = {"newmark": 1e-5, "dp5": 1e-5}
+DEFAULT_RTOL = {m.NAME: m.DEFAULT_RTOL for m in methods.MODULES}
 """Each method's default rtol: every peak within 1e-3 of a converged run
 (``benchmarks/peak_accuracy.py`` measures it)."""
 
@@ -25,7 +28,7 @@ class Integrator:
     ----------
     method : str
         "dp5" (default): while every gap is open, the building by the explicit Dormand-Prince
-        5(4) pair and the walls exactly (:mod:`femoat.integration.explicit`); while a contact
+        5(4) pair and the walls exactly (:mod:`femoat.integration.methods.dp5`); while a contact
         is closed, Newmark/HHT-α as in "newmark". "newmark": implicit Newmark/HHT-α throughout
         (second order; the method of femoat before it had "dp5"). Both locate contact events
         and land on element kinks the same way; "dp5" also lands on the turning points of

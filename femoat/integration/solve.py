@@ -7,13 +7,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from femoat.integration import explicit as ex
-from femoat.integration import kernel as kn
+from femoat.integration import codes, methods
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
-from femoat.integration.episodes import N_EP, N_IMPACT
 from femoat.integration.limits import pack_limits
-from femoat.integration.options import RING_ROWS
-from femoat.integration.peaks import size as pk_size
+from femoat.integration.methods.dp5 import N_STAGES
+from femoat.integration.recording import channels as registry
+from femoat.integration.recording.episodes import N_EP, N_IMPACT
+from femoat.integration.recording.peaks import size as pk_size
+from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
@@ -29,20 +30,14 @@ class RecordBudgetError(SolverError):
 
 
 @dataclass
-class RawHistory:
-    """What the loop recorded, trimmed to the steps taken (units: s, in, in/s, in/s², kip)."""
+class History:
+    """What the loop kept: the histories trimmed to the samples recorded, and what it kept
+    without a history (peaks, impacts, energies, counters, limit times)."""
 
-    t: np.ndarray
-    u: np.ndarray
-    v: np.ndarray
-    a: np.ndarray
-    ag: np.ndarray
-    el_force: np.ndarray
-    el_deformation: np.ndarray
-    contact_force: np.ndarray
-    indentation: np.ndarray
-    indentation_rate: np.ndarray
-    closed: np.ndarray
+    arrays: dict
+    """{channel: array}, one row per recorded sample (t = 0 first), the channels of
+    :mod:`femoat.integration.recording.channels` (no rows when the run kept no history);
+    units there."""
     stats: dict
     energy: dict
     limit_times: np.ndarray
@@ -50,16 +45,14 @@ class RawHistory:
     stopped_at_limit: bool
     """The run ended at a limit: a runaway row, or a criterion row with ``stop_at_limit``."""
     peaks: np.ndarray
-    """The running peaks of the continuous solution (:mod:`femoat.integration.peaks`)."""
+    """The running peaks of the continuous solution
+    (:mod:`femoat.integration.recording.peaks`)."""
     impacts: np.ndarray
-    """The impact episodes kept in the loop (:mod:`femoat.integration.episodes`), one row each
-    in the order they ended, columns ``episodes.IMPACT_FIELDS``."""
+    """The impact episodes kept in the loop (:mod:`femoat.integration.recording.episodes`),
+    one row each in the order they ended, columns ``episodes.IMPACT_FIELDS``."""
 
 
-METHOD_CODES = {"newmark": kn.METHOD_NEWMARK, "dp5": kn.METHOD_DP5}
-"""The kernel's code of each :class:`~femoat.integration.settings.Integrator` method."""
-
-CHANNELS = ("displacement", "velocity", "acceleration", "elements", "contacts")
+CHANNELS = registry.GROUPS
 
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
@@ -82,7 +75,8 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     progress : callable or None
         Called as progress(t, duration) after each chunk.
     channels : iterable of str
-        Which histories to record, among :data:`CHANNELS`; displacements and contacts are always
+        Which histories to record, among :data:`CHANNELS` (the groups of
+        :mod:`femoat.integration.recording.channels`); displacements and contacts are always
         recorded. Unrequested channels are not written at all (their arrays come back with zero
         columns).
     history : bool
@@ -103,10 +97,10 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         checks nothing (:func:`femoat.run.run` always gives the runaway bounds of
         :mod:`femoat.collapse`).
     stop_at_limit : bool
-        End the run at the first step beyond a criterion row too (``RawHistory.stopped_at_limit``
+        End the run at the first step beyond a criterion row too (``History.stopped_at_limit``
         is then True, as after a runaway row).
 
-    Returns the :class:`RawHistory`: :func:`integrate` without its status, raising instead.
+    Returns the :class:`History`: :func:`integrate` without its status, raising instead.
 
     Raises
     ------
@@ -142,7 +136,7 @@ class Status(NamedTuple):
 def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
               chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
               stop_at_limit=False, history=True):
-    """(:class:`RawHistory`, :class:`Status`): :func:`solve` (the same parameters) without
+    """(:class:`History`, :class:`Status`): :func:`solve` (the same parameters) without
     raising when the stepping cannot continue: the history, peaks, impacts and energies up
     to the time reached, and the status saying why it stopped. Bad input still raises
     ``ValueError``."""
@@ -153,28 +147,33 @@ def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, p
                          history)
     model, state, work = _bundles(packed, ag, u, v, settings)
     start = _start(kern, packed, model, state, settings, work, channels, history, integ,
-                   duration)
+                   duration, u0, v0)
     cpu0 = _time.process_time()
     status, rec = _advance(kern, model, state, settings, work, start.rec, integ, duration,
                            progress, chunks, packed, history)
     kern.finish_peaks(model, state, settings, rec)
     kern.finish_episodes(state, rec)
     cpu = _time.process_time() - cpu0
-    return _history(kern, backend, packed, model, state, rec, start, history, status, cpu,
-                    u0, v0), status
+    return _history(kern, backend, packed, model, state, rec, start, history, status,
+                    cpu), status
 
 
 class _Start(NamedTuple):
-    """What the loop starts from besides the bundles: the initial state's values that the
-    recorder does not hold (its first row), the initial energy, the recorder."""
+    """What the loop starts from besides the bundles: the initial row of each channel that the
+    recorder does not hold (the ``initial`` fields of
+    :mod:`~femoat.integration.recording.channels`), the initial energy, the recorder."""
 
-    ag0: float
+    t: float
+    u: np.ndarray
+    v: np.ndarray
     a: np.ndarray
+    ag: float
     el_f: np.ndarray
     el_d: np.ndarray
+    indentation: np.ndarray
     energy: float
     rec: Recorder
-    widths: dict
+    sizes: dict
 
 
 def _inputs(packed, ag, dt_rec, duration, u0, v0):
@@ -196,7 +195,8 @@ def _inputs(packed, ag, dt_rec, duration, u0, v0):
 
 
 def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, history):
-    """The :class:`Settings` bundle: option slots, error scales, limit rows."""
+    """The :class:`Settings` bundle: the method and its options by name, error scales, limit
+    rows."""
     n = packed.n
     scale_open, scale_contact, err_ref, scale_accel = error_scales(packed, np.abs(ag).max())
     d_me = float(scale_contact[0])
@@ -208,64 +208,63 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
         h_contact = min(h_contact, math.pi * math.sqrt(m_local / w.law.params.k_eff))
     h_contact = h_contact / integ.contact_steps if math.isfinite(h_contact) else dt_rec
 
-    fopt = np.zeros(kn.N_FOPT)
-    fopt[kn.F_BETA], fopt[kn.F_GAMMA], fopt[kn.F_ALPHA] = integ.beta, integ.gamma, integ.alpha
-    fopt[kn.F_RTOL] = integ.rtol
-    fopt[kn.F_HMAX] = integ.max_step if integ.max_step is not None else dt_rec
-    fopt[kn.F_HMIN] = integ.min_step
-    fopt[kn.F_NTOL] = integ.newton_tol
-    fopt[kn.F_TEND] = duration
-    fopt[kn.F_DTREC] = dt_rec
-    fopt[kn.F_HCONTACT] = h_contact
-    fopt[kn.F_GAPTOL] = 1e-3 * integ.rtol * d_me
     n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
-    iopt = np.zeros(kn.N_IOPT, dtype=np.int64)
-    iopt[kn.I_MAXIT], iopt[kn.I_RECORD_EVERY] = integ.max_newton, integ.record_every
-    iopt[kn.I_N_COUPLED] = n_explicit if lazy else n
-    iopt[kn.I_STOP_AT_LIMIT] = 1 if stop_at_limit else 0
-    iopt[kn.I_N_STRUCT], iopt[kn.I_N_EXPLICIT] = packed.n_struct, n_explicit
-    iopt[kn.I_METHOD] = METHOD_CODES[integ.method]
-    iopt[kn.I_RING] = 0 if history else 1
-    return Settings(fopt=fopt, iopt=iopt, scale_open=scale_open, scale_contact=scale_contact,
-                    err_ref=err_ref, scale_accel=scale_accel,
-                    limits=pack_limits(() if limits is None else tuple(limits), packed))
+    method = methods.module(integ.method)
+    return Settings(
+        method=methods.CODES[integ.method], quintic_peaks=bool(method.QUINTIC_DENSE),
+        beta=float(integ.beta), gamma=float(integ.gamma), alpha=float(integ.alpha),
+        newton_tol=float(integ.newton_tol), max_newton=int(integ.max_newton),
+        n_coupled=int(n_explicit if lazy else n), n_explicit=int(n_explicit),
+        n_struct=int(packed.n_struct),
+        rtol=float(integ.rtol),
+        h_max=float(integ.max_step if integ.max_step is not None else dt_rec),
+        h_min=float(integ.min_step), t_end=float(duration), dt_record=float(dt_rec),
+        scale_open=scale_open, scale_contact=scale_contact, err_ref=err_ref,
+        scale_accel=scale_accel,
+        h_contact=float(h_contact), gap_tol=float(1e-3 * integ.rtol * d_me),
+        record_every=int(integ.record_every), ring=not history,
+        stop_at_limit=bool(stop_at_limit),
+        limits=pack_limits(() if limits is None else tuple(limits), packed))
 
 
 def _bundles(packed, ag, u, v, settings):
     """(:class:`Model`, :class:`State`, :class:`Work`): the model read by the loop, working
     copies of the states it advances (the packed model stays reusable), its scratch."""
-    n, n_explicit = packed.n, settings.iopt[kn.I_N_EXPLICIT]
+    n, n_explicit = packed.n, settings.n_explicit
     nel, ncon = packed.el_code.size, packed.c_code.size
     model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.r, ag=ag, el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
                   c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
-    h0 = settings.fopt[kn.F_HMAX]
-    state = State(t=np.zeros(1), h=np.array([h0, h0]), ag_now=np.zeros(1),
+    h0 = settings.h_max
+    state = State(t=np.zeros(1), ag_now=np.zeros(1),
                   u=u, v=v, a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(),
                   el_f=np.zeros(nel), el_d=np.zeros(nel), el_W=np.zeros(nel),
                   c_H=packed.c_H.copy(), c_f=np.zeros(ncon), c_d=np.zeros(ncon),
                   c_W=np.zeros(ncon), c_closed=np.zeros(ncon, dtype=np.int64),
-                  energy=np.zeros(kn.N_ENERGY), stats=np.zeros(kn.N_STATS, dtype=np.int64),
+                  energy=np.zeros(codes.N_ENERGY), stats=np.zeros(codes.N_STATS, dtype=np.int64),
                   first_exceed=np.full(settings.limits.shape[0], -1.0),
                   pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
                   pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)),
-                  ctl=np.array([0, -1, 0], dtype=np.int64))
+                  h=np.array([h0]), h_cruise=np.array([h0]),
+                  shortened=np.zeros(1, dtype=np.int64), landing=np.full(1, -1, dtype=np.int64),
+                  since_record=np.zeros(1, dtype=np.int64))
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
                 ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
-                kv=np.zeros((ex.N_STAGES, n)), ka=np.zeros((ex.N_STAGES, n)), eu=np.zeros(n),
-                ev=np.zeros(n), de=np.zeros(kn.N_ENERGY),
+                kv=np.zeros((N_STAGES, n)), ka=np.zeros((N_STAGES, n)), eu=np.zeros(n),
+                ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]))
     return model, state, work
 
 
-def _start(kern, packed, model, state, settings, work, channels, history, integ, duration):
+def _start(kern, packed, model, state, settings, work, channels_asked, history, integ,
+           duration, u0, v0):
     """The initial equilibrium M·a0 = p0 − F(u0, v0), the running peaks and episodes started,
     the recorder: a :class:`_Start`."""
     n, nel, ncon = packed.n, packed.el_code.size, packed.c_code.size
-    ag0 = kern.ground_accel(model.ag, settings.fopt[kn.F_DTREC], 0.0)
+    ag0 = kern.ground_accel(model.ag, settings.dt_record, 0.0)
     state.ag_now[0] = ag0
     kern.internal_force(model, state, work)
     state.a[:] = np.linalg.solve(packed.M, -packed.r * ag0 - state.F)
@@ -279,31 +278,28 @@ def _start(kern, packed, model, state, settings, work, channels, history, integ,
                 f"{state.c_d[c]:.3g} in); start the base mat inside the gap.")
 
     e_initial = _initial_energy(kern, packed, state.u, state.v)
-    unknown = set(channels) - set(CHANNELS)
-    if unknown:
-        raise ValueError(f"channels: {sorted(unknown)} unknown; choose from {CHANNELS}.")
-    chan = set(channels) | {"displacement", "contacts"}
+    sizes = dict(dofs=n, elements=nel, contacts=ncon)
+    cols = registry.columns(sizes, channels_asked, history)
     if history:
-        widths = dict(u=n, v=n if "velocity" in chan else 0,
-                      a=n if "acceleration" in chan else 0, el=nel if "elements" in chan else 0,
-                      c=ncon)
         # room for every record sample plus contact steps (grown by doubling when short, up to
         # the record budget); the fifth-order open phase takes 1-1.6 steps per sample, turning
         # points included
-        per_sample = 2.0 if integ.method == "dp5" else 1.2
-        cap = min(int(per_sample * duration / settings.fopt[kn.F_DTREC] / integ.record_every)
-                  + 1024, _max_rows(integ, widths))
+        per_sample = 2.0 if methods.module(integ.method).EXPLICIT else 1.2
+        cap = min(int(per_sample * duration / settings.dt_record / integ.record_every)
+                  + 1024, _max_rows(integ, cols))
     else:  # what the peaks and the episodes read: the last samples' contact channels
-        widths = dict(u=0, v=0, a=0, el=0, c=ncon)
         cap = RING_ROWS
-    rec = _recorder(cap, widths, IMPACT_ROWS + 3 * ncon)
+    rec = Recorder(*registry.buffers(cap, cols), np.zeros((IMPACT_ROWS + 3 * ncon, N_IMPACT)))
     kern.start_episodes(state)
-    return _Start(ag0, a_initial, el_f_initial, el_d_initial, e_initial, rec, widths)
+    u_start, v_start = _initial_u(u0, n), _initial_u(v0, n)
+    return _Start(t=0.0, u=u_start, v=v_start, a=a_initial, ag=ag0, el_f=el_f_initial,
+                  el_d=el_d_initial, indentation=packed.c_B @ u_start - packed.c_gap,
+                  energy=e_initial, rec=rec, sizes=sizes)
 
 
-def _max_rows(integ, widths):
-    """The most samples the record budget holds."""
-    return int(integ.record_budget // _row_bytes(widths))
+def _max_rows(integ, cols):
+    """The most samples the record budget holds (buffer columns ``cols``)."""
+    return int(integ.record_budget // registry.row_bytes(cols))
 
 
 def _advance(kern, model, state, settings, work, rec, integ, duration, progress, chunks, packed,
@@ -318,67 +314,52 @@ def _advance(kern, model, state, settings, work, rec, integ, duration, progress,
     while True:
         code = kern.run_chunk(targets[k], model, state, settings, work, rec)
         t = float(state.t[0])
-        if code == kn.BUFFER_FULL:
+        if code == codes.BUFFER_FULL:
             cap = rec.t.shape[0]
-            if history and state.stats[kn.S_NOUT] >= cap:
-                max_cap = _max_rows(integ, _widths(rec))
+            if history and state.stats[codes.S_NOUT] >= cap:
+                max_cap = _max_rows(integ, _columns(rec))
                 if cap >= max_cap:
                     return Status("budget", t, _budget_message(t, duration, cap, integ),
                                   RecordBudgetError), rec
-                rec = _grow(rec, min(2 * cap, max_cap))
+                rec = Recorder(*(registry.grown(arr, min(2 * cap, max_cap))
+                                 for arr in rec[:-1]), rec.episodes)
             else:  # the impact table is short
-                rec = rec._replace(episodes=_grown(rec.episodes, 2 * rec.episodes.shape[0]))
+                rec = rec._replace(episodes=registry.grown(rec.episodes,
+                                                           2 * rec.episodes.shape[0]))
             continue
-        if code in (kn.NEWTON_FAILED, kn.STEP_TOO_SMALL):
-            stalled = code == kn.STEP_TOO_SMALL
+        if code in (codes.NEWTON_FAILED, codes.STEP_TOO_SMALL):
+            stalled = code == codes.STEP_TOO_SMALL
             return Status("stalled" if stalled else "failed", t,
                           _failure_message(packed, t, state.u, state.v, state.c_closed, integ,
                                            stalled=stalled), SolverError), rec
         if progress is not None:
             progress(t, duration)
-        if code == kn.DONE:
+        if code == codes.DONE:
             return Status("done", t, "", None), rec
-        if code == kn.LIMIT_REACHED:
+        if code == codes.LIMIT_REACHED:
             return Status("limit", t, "", None), rec
         k = min(k + 1, chunks - 1)
 
 
-def _widths(rec):
-    """The column counts of the recorder's channels (the keys of :data:`RECORDER_COLUMNS`)."""
-    return dict(u=rec.u.shape[1], v=rec.v.shape[1], a=rec.a.shape[1], el=rec.ef.shape[1],
-                c=rec.cf.shape[1])
+def _columns(rec):
+    """{buffer: columns (None: one value per sample)} of the recorder ``rec``."""
+    return {name: (None if arr.ndim == 1 else arr.shape[1])
+            for name, arr in zip(registry.BUFFERS, rec)}
 
 
-def _history(kern, backend, packed, model, state, rec, start, history, status, cpu, u0, v0):
-    """The :class:`RawHistory` of the run (its rows trimmed to the samples recorded)."""
-    n, nel, ncon = packed.n, packed.el_code.size, packed.c_code.size
-    widths = start.widths
+def _history(kern, backend, packed, model, state, rec, start, history, status, cpu):
+    """The :class:`History` of the run (its rows trimmed to the samples recorded)."""
     stats = state.stats
-    m = stats[kn.S_NOUT]
-    if history:
-        rows = dict(
-            t=np.concatenate([np.zeros(1), rec.t[:m]]),
-            u=np.vstack([np.array(u0 if u0 is not None else np.zeros(n), float), rec.u[:m]]),
-            v=np.vstack([(np.array(v0 if v0 is not None else np.zeros(n), float))[:widths["v"]],
-                         rec.v[:m]]),
-            a=np.vstack([start.a[:widths["a"]], rec.a[:m]]),
-            ag=np.concatenate([[start.ag0], rec.ag[:m]]),
-            el_force=np.vstack([start.el_f[:widths["el"]], rec.ef[:m]]),
-            el_deformation=np.vstack([start.el_d[:widths["el"]], rec.ed[:m]]),
-            contact_force=np.vstack([np.zeros((1, ncon)), rec.cf[:m]]),
-            indentation=np.vstack([packed.c_B @ _initial_u(u0, n) - packed.c_gap, rec.cd[:m]]),
-            indentation_rate=np.vstack([np.zeros((1, ncon)), rec.cv[:m]]),
-            closed=np.vstack([np.zeros((1, ncon), dtype=np.int8), rec.closed[:m]]),
-        )
-    else:  # no rows, every column
-        rows = {name: np.zeros((0,) + (() if w is None else (dict(n=n, el=nel, c=ncon)[w],)),
-                               dtype=np.int8 if name == "closed" else np.float64)
-                for name, w in HISTORY_ARRAYS.items()}
-    return RawHistory(
-        **rows,
-        stats=dict(steps=int(stats[kn.S_STEPS]), rejected_error=int(stats[kn.S_REJECT_ERR]),
-                   rejected_newton=int(stats[kn.S_REJECT_NEWTON]),
-                   newton_iterations=int(stats[kn.S_NEWTON]), events=int(stats[kn.S_EVENTS]),
+    m = stats[codes.S_NOUT]
+    arrays = (registry.histories(rec, m, start) if history
+              else registry.no_histories(start.sizes))
+    return History(
+        arrays=arrays,
+        stats=dict(steps=int(stats[codes.S_STEPS]),
+                   rejected_error=int(stats[codes.S_REJECT_ERR]),
+                   rejected_newton=int(stats[codes.S_REJECT_NEWTON]),
+                   newton_iterations=int(stats[codes.S_NEWTON]),
+                   events=int(stats[codes.S_EVENTS]),
                    cpu_seconds=cpu, recorded=int(m) if history else 0, kernels=backend,
                    t_reached=float(state.t[0])),
         energy=_energy(kern, packed, state.u, state.v, state.el_S, state.el_W, state.c_H,
@@ -386,7 +367,7 @@ def _history(kern, backend, packed, model, state, rec, start, history, status, c
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
         stopped_at_limit=status.code == "limit",
         peaks=state.pk.copy(),
-        impacts=rec.episodes[:stats[kn.S_IMPACTS]].copy(),
+        impacts=rec.episodes[:stats[codes.S_IMPACTS]].copy(),
     )
 
 
@@ -395,10 +376,6 @@ def _initial_u(u0, n):
     return np.zeros(n) if u0 is None else np.asarray(u0, dtype=float)
 
 
-HISTORY_ARRAYS = dict(t=None, u="n", v="n", a="n", ag=None, el_force="el", el_deformation="el",
-                      contact_force="c", indentation="c", indentation_rate="c", closed="c")
-"""The :class:`RawHistory` fields that hold one row per recorded sample, and the key of their
-width (n DOFs, el elements, c contacts; None: one value per sample)."""
 IMPACT_ROWS = 64
 """The impact table's first room [episodes] (doubled when short)."""
 
@@ -508,45 +485,6 @@ def _uncoupled_size(packed):
     return ns
 
 
-RECORDER_COLUMNS = {"t": None, "u": "u", "v": "v", "a": "a", "ag": None, "ef": "el", "ed": "el",
-                    "cf": "c", "cd": "c", "cv": "c", "closed": "c"}
-"""Columns of each recorder buffer (:class:`~femoat.integration.bundles.Recorder`): the key of
-its width in ``widths`` (0 when the channel is not requested), None for one value per sample."""
-
-
-def _row_bytes(widths):
-    """Bytes of one recorded sample for the channel ``widths``."""
-    return sum(np.dtype(np.int8 if name == "closed" else np.float64).itemsize
-               * (1 if RECORDER_COLUMNS[name] is None else widths[RECORDER_COLUMNS[name]])
-               for name in RECORDER_COLUMNS)
-
-
-def _recorder(cap, widths, impact_rows):
-    """Empty history buffers for ``cap`` samples and an impact table of ``impact_rows``."""
-    bufs = []
-    for name in Recorder._fields:
-        if name == "episodes":
-            bufs.append(np.zeros((impact_rows, N_IMPACT)))
-            continue
-        key = RECORDER_COLUMNS[name]
-        shape = (cap,) if key is None else (cap, widths[key])
-        bufs.append(np.zeros(shape, dtype=np.int8 if name == "closed" else np.float64))
-    return Recorder(*bufs)
-
-
-def _grow(rec, cap):
-    """The history buffers of ``rec`` with room for ``cap`` samples (the recorded rows kept)."""
-    return Recorder(*(arr if name == "episodes" else _grown(arr, cap)
-                      for name, arr in zip(Recorder._fields, rec)))
-
-
-def _grown(arr, rows):
-    """``arr`` with room for ``rows`` rows (its rows kept, zeros after)."""
-    new = np.zeros((rows,) + arr.shape[1:], dtype=arr.dtype)
-    new[: arr.shape[0]] = arr
-    return new
-
-
 def _quadratic(x, A):
     """xᵀ·A·x, correctly rounded sum of its terms x_i·A_ij·x_j (A_ij ≠ 0): the same bits on
     every machine (numpy's matrix products take machine-dependent SIMD paths and differ in the
@@ -577,12 +515,12 @@ def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_i
     sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]
     out = dict(
         initial=e_initial,
-        input=float(energy[kn.E_INPUT]),
+        input=float(energy[codes.E_INPUT]),
         kinetic=float(kinetic),
         recoverable=math.fsum([linear_strain, *el_rec, *c_rec]),
         hysteretic=math.fsum(el_diss[sto]),
         friction=math.fsum(el_diss[iso]),
-        viscous=float(energy[kn.E_VISCOUS]),
+        viscous=float(energy[codes.E_VISCOUS]),
         contact=math.fsum(c_W - c_rec),
     )
     accounted = sum(out[k] for k in ("kinetic", "recoverable", "hysteretic", "friction",
@@ -614,7 +552,7 @@ def _failure_message(packed, t, u, v, closed, integ, stalled=False):
             "locating a contact event. This is a solver defect; please report the scenario. "
             "A looser Integrator(rtol=...) usually steps past it."
         )
-    if integ.method == "dp5" and not closed.any():
+    if methods.module(integ.method).EXPLICIT and not closed.any():
         return (
             f"The explicit step of the open phase (method 'dp5') gave no finite state at "
             f"t = {t:.6g} s (all gaps open; base displacement {u[0]:.4g} in, velocity "

@@ -86,7 +86,7 @@ class PoundingModel:
         return names
 
     def pack(self):
-        """Arrays for the compiled loop (see :mod:`femoat.integration.kernel`)."""
+        """Arrays for the compiled loop (see :mod:`femoat.integration.driver`)."""
         b = self.building
         nf = len(b.floor_weights)
         n_struct = 1 + nf

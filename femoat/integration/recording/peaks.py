@@ -12,7 +12,7 @@ recorded history (so a run's peaks need no Python pass over its history), sample
 * the largest indentation, at the samples.
 
 An interval is judged once the sample after it is recorded: an event at a committed state may
-still change the contact flags of the last sample (``kernel._mark_last_sample``). The last
+still change the contact flags of the last sample (``recorder.mark_last_sample``). The last
 interval is judged by :func:`finish_peaks` after the loop.
 
 Layout of ``state.pk`` for ns building DOFs and nc contacts: ``[0]`` base displacement, ``[1:ns]``
@@ -25,8 +25,8 @@ indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g)
 import numpy as np
 
 from femoat.compilation.jit import njit
-from femoat.integration.rows import row
-from femoat.integration.options import I_METHOD, I_N_STRUCT, METHOD_DP5, S_NOUT
+from femoat.integration.recording.rows import row
+from femoat.integration.codes import S_NOUT
 
 
 def size(ns, nc):
@@ -125,7 +125,7 @@ def _wall(c_B, c, x, ns):
 @njit(cache=True, inline="always")
 def _endpoint(t, model, settings, u, v, a, ag, c_d, pk):
     """The sample's own values into the running maxima."""
-    ns = settings.iopt[I_N_STRUCT]
+    ns = settings.n_struct
     nc = model.c_gap.size
     pk[0] = max(pk[0], abs(u[0]))
     for k in range(1, ns):
@@ -143,7 +143,7 @@ def _endpoint(t, model, settings, u, v, a, ag, c_d, pk):
 def _interval(smooth, model, settings, ring, pk):
     """The crests inside the interval between the two samples of ``ring``."""
     n = (ring.shape[1] - 2) // 3
-    ns = settings.iopt[I_N_STRUCT]
+    ns = settings.n_struct
     nc = model.c_gap.size
     t0, t1 = ring[0, 0], ring[1, 0]
     h = t1 - t0
@@ -166,7 +166,7 @@ def _interval(smooth, model, settings, ring, pk):
         th = a0[0] / (a0[0] - a1[0])
         if th > 0.0 and th < 1.0:
             pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v0[0] + 0.5 * h * a0[0] * th))
-    if smooth and settings.iopt[I_METHOD] == METHOD_DP5:
+    if smooth and settings.quintic_peaks:
         for i in range(ns):
             pk[ns + nc + i] = _quintic_accel_crest(h, u0[i], v0[i], a0[i], ag0, u1[i], v1[i],
                                                    a1[i], ag1, pk[ns + nc + i])

@@ -9,7 +9,7 @@ step; but while every gap is open it is a linear oscillator driven by the ground
 uncoupled from the building, so it is advanced exactly (the matrix exponential of its
 first-order form, with the ground acceleration linear inside the step).
 
-The step (:func:`explicit_step`), for the building DOFs i < nb (``I_N_EXPLICIT``):
+The step (:func:`explicit_step`), for the building DOFs i < nb (``settings.n_explicit``):
 
 * stages k_s = (v_s, a_s) of y = (u, v), a_s = M⁻¹·(−r·a_g(t + c_s·h) − F(u_s, v_s)) with every
   element evaluated from its state committed at the step's start (no branch change inside a
@@ -26,7 +26,10 @@ The step (:func:`explicit_step`), for the building DOFs i < nb (``I_N_EXPLICIT``
   round-off as Newmark's trapezoidal balance does.
 
 The ground acceleration is linear inside a step because steps end on record samples (the
-driver's :func:`~femoat.integration.kernel._step_end`).
+controller's :func:`~femoat.integration.controller._step_end`).
+
+The method's interface (:mod:`femoat.integration.methods`): :func:`step`, :func:`retry`,
+:func:`next_step` and the controller's constants.
 
 Units: kip, in, s.
 """
@@ -35,7 +38,7 @@ import numpy as np
 
 from femoat.compilation.jit import njit
 from femoat.integration.forces import _internal_force
-from femoat.integration.options import E_INPUT, E_VISCOUS, F_RTOL, I_N_EXPLICIT
+from femoat.integration.codes import E_INPUT, E_VISCOUS, S_REJECT_ERR
 
 # ---- the Dormand-Prince 5(4) tableau -------------------------------------------------------
 
@@ -54,6 +57,18 @@ DP_E = np.array([71.0 / 57600.0, 0.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 /
                  22.0 / 525.0, -1.0 / 40.0])
 """b − b̂: the fifth- minus the embedded fourth-order weights (the error estimate)."""
 N_STAGES = 7
+
+NAME = "dp5"
+"""The method's name (``Integrator(method=...)``)."""
+EXPLICIT = True
+"""Every stage is evaluated from the committed state: the driver lands on the turning points of
+yielding elements, looks inside a step for a gap that closes and reopens in it, and keeps a
+cruising step across the steps cut short."""
+QUINTIC_DENSE = True
+"""Its dense output is fifth order: the running peaks read the acceleration crests inside a
+step of the open phase from the quintic Hermite interpolant."""
+DEFAULT_RTOL = 1e-5
+"""Every peak within 1e-3 of a converged run (``benchmarks/peak_accuracy.py`` measures it)."""
 
 ERROR_EXPONENT = -1.0 / 5.0
 """h ∝ err^(−1/5): the embedded estimate is O(h⁵)."""
@@ -247,7 +262,7 @@ def _building_energy(hh, ag0, ag1, nb, model, work):
 @njit(cache=True, inline="always")
 def _error(hh, nb, model, settings, work):
     """The scaled error of the embedded fourth-order solution (1 = at the tolerance)."""
-    rtol = settings.fopt[F_RTOL]
+    rtol = settings.rtol
     scale, err_ref, s_acc = settings.scale_open, settings.err_ref, settings.scale_accel
     kv, ka, eu, ev = work.kv, work.ka, work.eu, work.ev
     for i in range(nb):
@@ -292,7 +307,7 @@ def explicit_step(hh, ag1, model, state, settings, work):
     every gap is open: ``work`` holds the end state, its forces, the contacts' indentations and
     the step's energy increments (``de``). Returns the scaled error (inf: a stage was
     not finite, the step must shrink)."""
-    nb = settings.iopt[I_N_EXPLICIT]
+    nb = settings.n_explicit
     ag0 = state.ag_now[0]
     work.de[E_INPUT] = 0.0
     work.de[E_VISCOUS] = 0.0
@@ -312,3 +327,30 @@ def explicit_step(hh, ag1, model, state, settings, work):
         if not (np.isfinite(work.u[i]) and np.isfinite(work.v[i])):
             return np.inf
     return _error(hh, nb, model, settings, work)
+
+
+# ---- the method's interface (femoat.integration.methods) ------------------------------------
+
+
+@njit(cache=True, inline="always")
+def step(hh, ag1, any_closed, model, state, settings, work):
+    """(the step has a finite state, its scaled error): :func:`explicit_step` (only ever called
+    while every gap is open)."""
+    err = explicit_step(hh, ag1, model, state, settings, work)
+    return np.isfinite(err), err
+
+
+@njit(cache=True, inline="always")
+def retry(t, hh, h, model, state, settings, work, rec):
+    """After a step with no finite state: (the smaller step to try, False), or (``h``, True)
+    when the step is already the smallest."""
+    if hh <= settings.h_min:
+        return h, True
+    state.stats[S_REJECT_ERR] += 1
+    return max(hh * SHRINK_MIN, settings.h_min), False
+
+
+@njit(cache=True, inline="always")
+def next_step(hh, err, h_min):
+    """The step after an accepted one of length ``hh`` and scaled error ``err``."""
+    return max(hh * step_factor(err), h_min)

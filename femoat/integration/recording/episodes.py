@@ -15,7 +15,7 @@ sample of the run. Of each episode:
 * max indentation [in] over the segment; impulse [kip·s]: the trapezoid rule over it.
 
 A sample is taken in once the sample after it is recorded: an event at the committed state may
-still change the contact flags and force of the last sample (``kernel._mark_last_sample``).
+still change the contact flags and force of the last sample (``recorder.mark_last_sample``).
 :func:`finish_episodes` takes in the last one after the loop and closes the open episodes.
 
 ``state.ep`` holds, per contact, the running episode (the ``EP_*`` columns); finished episodes
@@ -26,8 +26,8 @@ end; ``state.stats[S_IMPACTS]`` counts them).
 import numpy as np
 
 from femoat.compilation.jit import njit
-from femoat.integration.rows import row
-from femoat.integration.options import S_IMPACTS, S_NOUT
+from femoat.integration.recording.rows import row
+from femoat.integration.codes import S_IMPACTS, S_NOUT
 
 # state.ep columns: the running episode of one contact
 (EP_PHASE, EP_START, EP_APPROACH, EP_MAX_INDENT, EP_IMPULSE, EP_FMAX, EP_T_ZERO, EP_T_END,

@@ -1,0 +1,109 @@
+"""Element kinks: a step in which an element changes branch (stick to slip, yield, capping) is
+shortened to end just past the kink (:func:`find_kink`), so that a sample sits on the corner of
+the force; an explicit step, whose stages are all evaluated from the committed state, also
+lands on the turning points where a yielding element unloads (:func:`find_turn`)."""
+
+from femoat.compilation.jit import njit
+from femoat.integration.interpolants import crossing, hermite
+from femoat.structure.materials.kernels import material_commit, material_trial
+
+
+KINK_RATIO = 0.5
+"""An element's tangent that changes by more than this fraction of the larger of its start and
+end values within a step marks a kink (a branch change: stick to slip, yield, capping)."""
+
+
+KINK_BISECTIONS = 12
+"""Bisections locating a kink: the step lands within 2^-12 of its length past it."""
+
+
+KINK_RESOLUTION = 2.0 ** -KINK_BISECTIONS
+"""A kink closer than this fraction to the start of a step is not landed on."""
+
+
+@njit(cache=True, inline="always")
+def _element_rates(e, model, v):
+    i, j = model.el_i[e], model.el_j[e]
+    return v[i] - (v[j] if j >= 0 else 0.0)
+
+
+@njit(cache=True, inline="always")
+def find_kink(hh, model, state, work):
+    """Fraction θ of the trial step just past the earliest element kink inside it (2: none).
+
+    An element's tangent at the start (its committed branch) and at the trial end are compared;
+    when they differ by more than KINK_RATIO, the branch change is located by bisection on the
+    element's deformation along the step's cubic Hermite interpolant, each point evaluated from
+    the committed state. Landing the step there puts a sample on the corner of the force (and
+    of the accelerations), which step ends would otherwise cut off.
+    """
+    theta = 2.0
+    el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
+    for e in range(el_code.size):
+        d0, d1 = state.el_d[e], work.ed[e]
+        dv0 = _element_rates(e, model, state.v)
+        dv1 = _element_rates(e, model, work.v)
+        # the start's branch is read a resolution into the step: at the committed point itself
+        # a material may sit on the boundary of two branches (a sliding bearing at |z| = 1)
+        lo, hi = KINK_RESOLUTION, 1.0
+        d, dth = hermite(lo, hh, d0, dv0, d1, dv1)
+        _, k0, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dth / hh)
+        _, k1, _ = material_trial(el_code[e], el_P[e], el_S[e], d1, dv1)
+        if abs(k1 - k0) <= KINK_RATIO * max(abs(k0), abs(k1)):
+            continue
+        for _ in range(KINK_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            d, dth = hermite(mid, hh, d0, dv0, d1, dv1)
+            _, k, _ = material_trial(el_code[e], el_P[e], el_S[e], d, dth / hh)
+            if abs(k - k0) <= abs(k - k1):
+                lo = mid
+            else:
+                hi = mid
+        if hi < theta:
+            theta = hi
+    return theta
+
+
+@njit(cache=True, inline="always")
+def find_turn(hh, model, state, work):
+    """Fraction θ of the trial step just past the earliest turning point of an element's
+    deformation inside it where the element changes branch (2: none).
+
+    Every stage of a step is evaluated from the state committed at its start, as if the
+    deformation went straight there; a reversal inside the step (a sliding bearing or a
+    yielding story turning back, which unloads it) is then not seen, and at a fifth-order
+    step's length that costs the order. A turning point is where the element's deformation
+    rate crosses zero along the cubic Hermite interpolant of the rate (its values and the
+    accelerations at the step's ends); it is a kink when the material, committed there, has a
+    tangent for the way back that differs by more than KINK_RATIO from the tangent it reached.
+    """
+    theta = 2.0
+    el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
+    s_tmp = work.s_tmp
+    for e in range(el_code.size):
+        dv0 = _element_rates(e, model, state.v)
+        dv1 = _element_rates(e, model, work.v)
+        if dv0 * dv1 >= 0.0:
+            continue
+        da0 = _element_rates(e, model, state.a)
+        da1 = _element_rates(e, model, work.a)
+        th = crossing(dv0, da0, dv1, da1, hh)
+        if th <= KINK_RESOLUTION or th >= 1.0:
+            continue
+        d, _ = hermite(th, hh, state.el_d[e], dv0, work.ed[e], dv1)
+        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0)
+        for k in range(s_tmp.size):
+            s_tmp[k] = el_S[e, k]
+        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0)
+        back = d - TURN_PROBE * (abs(d) + abs(state.el_d[e]) + 1e-6) * (1.0 if dv0 > 0.0 else -1.0)
+        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0)
+        if abs(k_back - k_on) <= KINK_RATIO * max(abs(k_on), abs(k_back)):
+            continue
+        th = min(1.0, th + KINK_RESOLUTION)
+        if th < theta:
+            theta = th
+    return theta
+
+
+TURN_PROBE = 1e-9
+"""A turning point's way back is probed this fraction of the deformation's size back from it."""

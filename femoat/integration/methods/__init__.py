@@ -1,0 +1,74 @@
+"""The integration methods of the open phase, one module each, and the registry the loop
+dispatches on.
+
+A method's module defines ``NAME``, ``DEFAULT_RTOL``, ``EXPLICIT`` (every stage evaluated from
+the committed state: the driver then lands on turning points, looks inside a step for a gap
+that closes and reopens in it, and keeps a cruising step), ``QUINTIC_DENSE`` (fifth-order dense
+output for the acceleration peaks), the controller's constants ``SAFETY``, ``SHRINK_MIN``,
+``GROW_MAX``, ``ERROR_EXPONENT``, and three kernels with the same arguments in every module:
+
+* ``step(hh, ag1, any_closed, model, state, settings, work) -> (solved, err)``: the trial step
+  of length ``hh`` into ``work`` and its scaled error (1 = at the tolerance);
+* ``retry(t, hh, h, model, state, settings, work, rec) -> (h, failed)``: the step to try after
+  one that could not be solved (``failed``: none is left);
+* ``next_step(hh, err, h_min) -> h``: the step after an accepted one.
+
+:data:`MODULES` is the registry: a method's code is its position. A new method is its module,
+its line in :data:`MODULES` and its branch in each of the three dispatchers below (numba
+cannot call a module chosen at run time; the branches are the whole of that cost). Every
+contact phase is integrated by :data:`CONTACT` (Newmark/HHT-α), whatever the open phase's
+method.
+"""
+
+from femoat.compilation.jit import njit
+from femoat.integration.methods import dp5, newmark
+
+MODULES = (newmark, dp5)
+"""The methods, by code."""
+NAMES = tuple(m.NAME for m in MODULES)
+"""The methods' names, by code (``Integrator(method=...)``)."""
+CODES = {m.NAME: code for code, m in enumerate(MODULES)}
+"""{name: code}."""
+CONTACT = CODES["newmark"]
+"""The method of every contact phase."""
+EXPLICIT = tuple(m.EXPLICIT for m in MODULES)
+"""Per code: every stage evaluated from the committed state (the module docstring)."""
+_SAFETY = tuple(float(m.SAFETY) for m in MODULES)
+_SHRINK_MIN = tuple(float(m.SHRINK_MIN) for m in MODULES)
+_ERROR_EXPONENT = tuple(float(m.ERROR_EXPONENT) for m in MODULES)
+
+
+def module(name):
+    """The module of the method ``name``."""
+    return MODULES[CODES[name]]
+
+
+@njit(cache=True, inline="always")
+def step(code, hh, ag1, any_closed, model, state, settings, work):
+    """The method ``code``'s trial step: (solved, scaled error)."""
+    if code == 1:
+        return dp5.step(hh, ag1, any_closed, model, state, settings, work)
+    return newmark.step(hh, ag1, any_closed, model, state, settings, work)
+
+
+@njit(cache=True, inline="always")
+def retry(code, t, hh, h, model, state, settings, work, rec):
+    """The method ``code``'s step after one it could not solve: (h, failed)."""
+    if code == 1:
+        return dp5.retry(t, hh, h, model, state, settings, work, rec)
+    return newmark.retry(t, hh, h, model, state, settings, work, rec)
+
+
+@njit(cache=True, inline="always")
+def next_step(code, hh, err, h_min):
+    """The method ``code``'s step after an accepted one."""
+    if code == 1:
+        return dp5.next_step(hh, err, h_min)
+    return newmark.next_step(hh, err, h_min)
+
+
+@njit(cache=True, inline="always")
+def shrink_factor(code, err):
+    """Factor of a step rejected with scaled error ``err`` > 1: the method's
+    SAFETY·err^ERROR_EXPONENT, at least its SHRINK_MIN."""
+    return max(_SHRINK_MIN[code], _SAFETY[code] * err ** _ERROR_EXPONENT[code])
