@@ -58,7 +58,8 @@ def main():
         packed = model.pack()
         t_lazy, a = best_cpu(lambda: solve(packed, gm.accel, gm.dt, dur, Integrator(), lazy=True))
         t_full, b = best_cpu(lambda: solve(packed, gm.accel, gm.dt, dur, Integrator(), lazy=False))
-        assert np.allclose(a.contact_force.max(0), b.contact_force.max(0), rtol=1e-8)
+        assert np.allclose(a.arrays["contact_force"].max(0), b.arrays["contact_force"].max(0),
+                           rtol=1e-8)
         print(f"{name:28s}{packed.n:6d}{t_lazy * 1e3:9.1f}{t_full * 1e3:9.1f}"
               f"{1 - t_lazy / t_full:8.0%}")
 

@@ -83,7 +83,7 @@ def test_aot_kernels_take_any_array_layout(built, tmp_path):
         "        p.el_code = p.el_code.astype(np.int32)\n"
         "        p.c_gap = np.repeat(p.c_gap, 2)[::2]\n"
         "    h = solve(p, gm.accel, gm.dt, 5.0, backend='aot')\n"
-        "    out.append([float(np.abs(h.contact_force).max()), int(h.stats['steps'])])\n"
+        "    out.append([float(np.abs(h.arrays['contact_force']).max()), int(h.stats['steps'])])\n"
         "print(json.dumps(out))\n"
     )
     done = _python(code, _env(built))
