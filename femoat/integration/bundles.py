@@ -3,8 +3,9 @@ ahead-of-time module exports (:func:`femoat.integration.driver.run_chunk` takes 
 
 * :class:`Model`: what is integrated (matrices, elements, contacts, the ground record, and
   ``Minv``, the inverse of the mass block the explicit step integrates); read only.
-* :class:`State`: what the loop advances (time, kinematics, committed element and contact
-  states, energies, counters, limit-state times, the running peaks of
+* :class:`State`: what the loop advances (time, the ground acceleration now, kinematics,
+  committed element, plan-bearing and contact states with their forces and work (``c_ft``,
+  ``c_Wt``: the walls' friction), energies, counters, limit-state times, the running peaks of
   :mod:`~femoat.integration.recording.peaks` and each contact's running episode of
   :mod:`~femoat.integration.recording.episodes`, and the step controller's state: the next
   step ``h``, the cruising step ``h_cruise``, a pending landing on a kink or an event
@@ -14,7 +15,8 @@ ahead-of-time module exports (:func:`femoat.integration.driver.run_chunk` takes 
 * :class:`Settings`: the method, the step controller and the events, by name (filled by
   :func:`femoat.integration.solve.integrate` from the
   :class:`~femoat.integration.settings.Integrator`), the error scales and the limit rows.
-* :class:`Work`: scratch arrays of a step (trial kinematics, forces, tangents, the linear system;
+* :class:`Work`: scratch arrays of a step (trial kinematics, forces, tangents, the linear system,
+  the ground acceleration at the step's end ``ag1`` and at a stage ``ag_stage``;
   for the explicit step of :mod:`femoat.integration.methods.dp5` its stages ``kv``, ``ka``,
   error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators).
 * :class:`Recorder`: the history buffers of :mod:`~femoat.integration.recording.channels` (one
@@ -29,10 +31,20 @@ from collections import namedtuple
 
 from femoat.integration.recording.channels import BUFFERS
 
-Model = namedtuple("Model", ["M", "C", "K", "r", "ag", "el_i", "el_j", "el_code", "el_P", "c_B",
-                             "c_gap", "c_code", "c_P", "Minv"])
+Model = namedtuple("Model", [
+    "M", "C", "K",      # (n, n) mass, damping, stiffness
+    "r", "ag",          # the ground load −r·a_g: r (n, components), a_g (samples, components)
+    "dof_axis",         # (n,) the ground component each DOF moves along (absolute accelerations)
+    "base_xy",          # (2,) the base mat's x and y DOFs in plan (−1, −1 in 1D)
+    "el_i", "el_j", "el_code", "el_P",  # two-node uniaxial elements
+    "b_dofs", "b_P",    # plan bearings (femoat.plan.bearing): (nb, 2) DOFs x, y; params
+    "c_B", "c_gap", "c_code", "c_P",    # contacts: δ = c_B·u − gap, law, params
+    "c_T", "c_mu",      # the walls' tangent rows and friction coefficients (plan)
+    "Minv",             # inverse of the mass block the explicit step integrates
+])
 State = namedtuple("State", ["t", "ag_now", "u", "v", "a", "F", "el_S", "el_f", "el_d",
-                             "el_W", "c_H", "c_f", "c_d", "c_W", "c_closed", "energy", "stats",
+                             "el_W", "b_S", "b_f", "b_W", "c_H", "c_f", "c_d", "c_W", "c_ft",
+                             "c_Wt", "c_closed", "energy", "stats",
                              "first_exceed", "pk", "pk_ring", "pk_n", "ep",
                              "h", "h_cruise", "shortened", "landing", "since_record"])
 Settings = namedtuple("Settings", [
@@ -60,7 +72,8 @@ Settings = namedtuple("Settings", [
     "stop_at_limit",   # bool: a criterion row ends the run (a runaway row always does)
     "limits",          # the limit rows (femoat.integration.limits)
 ])
-Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "cf", "cd",
+Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "bf", "cf",
+                           "cd", "cft", "ag1", "ag_stage", "k22",
                            "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
                            "wscratch", "s_tmp"])
 Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])

@@ -5,24 +5,26 @@ from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_commit
 from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.events import close_episode, open_episode
-from femoat.integration.forces import contact_rate
+from femoat.integration.forces import contact_rate, ground_load
+from femoat.plan.bearing import plan_friction_pendulum_commit
 from femoat.structure.materials.kernels import material_commit
 
 
 @njit(cache=True, inline="always")
 def accept(ag1, landing, explicit_step, model, state, settings, work):
-    """Commit the trial step: energies, element and contact states, episode changes (a closure
+    """Commit the trial step: energies, element, bearing and contact states, episode changes (a closure
     within gap_tol, the located separation of contact ``landing``), kinematics. Returns
     (an episode opened or closed, the largest approach velocity of the closures).
 
     Energies: input and viscous by the trapezoidal rule of the Newmark step, or the explicit
     step's own quadrature (``work.de``) when ``explicit_step``; element work by the trapezoidal
-    rule for both (exact on a branch that is linear in the deformation)."""
+    rule for both (exact on a branch that is linear in the deformation), and for the plan
+    bearings and the walls' friction."""
     C, r, c_B = model.C, model.r, model.c_B
     u, v, a, Fn = state.u, state.v, state.a, state.F
     energy = state.energy
     gap_tol = settings.gap_tol
-    ag0 = state.ag_now[0]
+    ag0 = state.ag_now
     n = u.size
     if explicit_step:
         energy[E_INPUT] += work.de[E_INPUT]
@@ -30,7 +32,7 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
     else:
         for i in range(n):
             du_i = work.u[i] - u[i]
-            energy[E_INPUT] += 0.5 * (-r[i] * ag0 - r[i] * ag1) * du_i
+            energy[E_INPUT] += 0.5 * (ground_load(r, i, ag0) + ground_load(r, i, ag1)) * du_i
             cv0 = 0.0
             cv1 = 0.0
             for j in range(n):
@@ -48,11 +50,26 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
         material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv)
         el_f[e] = w_ef[e]
         el_d[e] = w_ed[e]
+    b_f, w_bf, b_dofs = state.b_f, work.bf, model.b_dofs
+    for e in range(b_f.shape[0]):
+        ix, iy = b_dofs[e, 0], b_dofs[e, 1]
+        state.b_W[e] += 0.5 * ((b_f[e, 0] + w_bf[e, 0]) * (work.u[ix] - u[ix])
+                               + (b_f[e, 1] + w_bf[e, 1]) * (work.u[iy] - u[iy]))
+        plan_friction_pendulum_commit(model.b_P[e], state.b_S[e], work.u[ix], work.u[iy],
+                                      work.v[ix], work.v[iy])
+        b_f[e, 0] = w_bf[e, 0]
+        b_f[e, 1] = w_bf[e, 1]
     toggled = False
     v_close = 0.0
     c_f, c_d, w_cf, w_cd, c_closed = state.c_f, state.c_d, work.cf, work.cd, state.c_closed
     for c in range(c_f.size):
         state.c_W[c] += 0.5 * (c_f[c] + w_cf[c]) * (w_cd[c] - c_d[c])
+        if model.c_mu[c] > 0.0:  # the wall friction's work along the slip t·u
+            slip = 0.0
+            for i in range(n):
+                slip += model.c_T[c, i] * (work.u[i] - u[i])
+            state.c_Wt[c] += 0.5 * (state.c_ft[c] + work.cft[c]) * slip
+            state.c_ft[c] = work.cft[c]
         step_commit(model.c_code[c], model.c_P[c], state.c_H[c], w_cd[c])
         c_f[c] = w_cf[c]
         c_d[c] = w_cd[c]
@@ -74,5 +91,6 @@ def accept(ag1, landing, explicit_step, model, state, settings, work):
         v[i] = work.v[i]
         a[i] = work.a[i]
         Fn[i] = work.F[i]
-    state.ag_now[0] = ag1
+    for k in range(ag1.size):
+        state.ag_now[k] = ag1[k]
     return toggled, v_close

@@ -89,8 +89,9 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if (stats[S_NOUT] >= rec.t.size and not ring) or stats[S_IMPACTS] > impacts_room:
             return _stop(BUFFER_FULL, t, h, h_cruise, shortened, landing, since_record, state)
         h_asked = h
-        hh, t1 = _step_end(t, h, t_end, shortened, settings, model.ag.size)
-        ag1 = ground_accel(model.ag, settings.dt_record, t1)
+        hh, t1 = _step_end(t, h, t_end, shortened, settings, model.ag.shape[0])
+        ag1 = work.ag1
+        ground_accel(model.ag, settings.dt_record, t1, ag1)
         closed_now = any_closed(c_closed)
         phase = methods.CONTACT if closed_now else open_method
         explicit_now = methods.EXPLICIT[phase]

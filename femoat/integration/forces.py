@@ -9,22 +9,34 @@ import numpy as np
 
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_force
+from femoat.plan.bearing import plan_friction_pendulum_trial
 from femoat.structure.materials.kernels import material_trial
 
 
 @njit(cache=True)
-def ground_accel(ag, dt_rec, t):
-    """a_g(t) [in/s²], linear between samples, zero after the record."""
+def ground_accel(ag, dt_rec, t, out):
+    """a_g(t) [in/s²] of each ground component (the columns of ``ag``, one row per sample)
+    into ``out``: linear between samples, zero after the record."""
     x = t / dt_rec
     i = int(np.floor(x))
-    if i < 0:
-        return 0.0
-    if i >= ag.size - 1:
-        if i == ag.size - 1 and x - i < 1e-9:
-            return ag[ag.size - 1]
-        return 0.0
-    w = x - i
-    return (1.0 - w) * ag[i] + w * ag[i + 1]
+    last = ag.shape[0] - 1
+    for k in range(out.size):
+        if i < 0:
+            out[k] = 0.0
+        elif i >= last:
+            out[k] = ag[last, k] if i == last and x - i < 1e-9 else 0.0
+        else:
+            w = x - i
+            out[k] = (1.0 - w) * ag[i, k] + w * ag[i + 1, k]
+
+
+@njit(cache=True, inline="always")
+def ground_load(r, i, ag):
+    """p_i = −Σ_k r_ik·a_g,k [kip]: DOF i's ground load under the components ``ag`` [in/s²]."""
+    s = r[i, 0] * ag[0]
+    for k in range(1, ag.size):
+        s += r[i, k] * ag[k]
+    return -s
 
 
 @njit(cache=True, inline="always")
@@ -74,12 +86,14 @@ def _solve_dense(A, b, n):
 
 @njit(cache=True, inline="always")
 def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, KT, CT,
-                    want_tangent, nd):
-    """F = C·v + K·u + element and contact forces at (u, v); tangents KT, CT if asked.
+                    want_tangent, nd, b_S, b_f, c_ft, k22):
+    """F = C·v + K·u + element, plan-bearing and contact forces at (u, v); tangents KT, CT if
+    asked.
 
-    Element states ``el_S`` and contact histories ``c_H`` are the committed ones (read only); the
-    element forces and deformations, contact forces and indentations are written to ``el_f``,
-    ``el_d``, ``c_f``, ``c_d``. Rows and columns from ``nd`` on are treated as diagonal
+    Element states ``el_S``, bearing states ``b_S`` and contact histories ``c_H`` are the
+    committed ones (read only); the element forces and deformations, the bearings' forces
+    (x, y), the contact forces and indentations and the walls' friction forces are written to
+    ``el_f``, ``el_d``, ``b_f``, ``c_f``, ``c_d``, ``c_ft``; ``k22`` is (2, 2, 2) scratch. Rows and columns from ``nd`` on are treated as diagonal
     (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
     Contacts act only while their episode is open (between a located closure and the located
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
@@ -124,6 +138,22 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
                 CT[j, j] += cf
                 CT[i, j] -= cf
                 CT[j, i] -= cf
+    for e in range(b_f.shape[0]):
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        kb, cb = k22[0], k22[1]
+        plan_friction_pendulum_trial(model.b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], b_f[e],
+                                     kb, cb)
+        F[ix] += b_f[e, 0]
+        F[iy] += b_f[e, 1]
+        if want_tangent:
+            KT[ix, ix] += kb[0, 0]
+            KT[ix, iy] += kb[0, 1]
+            KT[iy, ix] += kb[1, 0]
+            KT[iy, iy] += kb[1, 1]
+            CT[ix, ix] += cb[0, 0]
+            CT[ix, iy] += cb[0, 1]
+            CT[iy, ix] += cb[1, 0]
+            CT[iy, iy] += cb[1, 1]
     for c in range(c_code.size):
         b = c_B[c]
         d = -c_gap[c]
@@ -132,6 +162,7 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
             d += b[i] * u[i]
             dv += b[i] * v[i]
         c_d[c] = d
+        c_ft[c] = 0.0
         if not c_closed[c]:
             # no episode open: no force (a trial step that closes the gap is shortened to the
             # located closure; a gap that has just opened within gap_tol carries nothing)
@@ -139,6 +170,8 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
             continue
         f, kf, cf = step_force(c_code[c], c_P[c], c_H[c], d, dv)
         c_f[c] = f
+        if model.c_mu[c] > 0.0 and f > 0.0:
+            _wall_friction(c, f, kf, cf, u, v, model, c_ft, F, KT, CT, want_tangent)
         if f != 0.0 or kf != 0.0 or cf != 0.0:
             for i in range(n):
                 if b[i] != 0.0:
@@ -150,10 +183,40 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
                                 CT[i, j] += cf * b[i] * b[j]
 
 
+WALL_SLIP_SPEED = 0.1
+"""[in/s] The wall friction's regularisation: f_t = μ·f_n·tanh(v_t / WALL_SLIP_SPEED), full
+Coulomb friction μ·f_n once the base mat slides along the wall faster than a few times this."""
+
+
+@njit(cache=True, inline="always")
+def _wall_friction(c, f, kf, cf, u, v, model, c_ft, F, KT, CT, want_tangent):
+    """Wall ``c``'s Coulomb friction during contact, regularised: f_t = μ·f·tanh(v_t/ε) along
+    the wall's tangent row t (v_t = t·v the base mat's slip rate), resisting the slip; its
+    tangents through the normal force f(δ, δ̇) (kf, cf) and the slip rate."""
+    t_row, b = model.c_T[c], model.c_B[c]
+    n = u.size
+    vt = 0.0
+    for i in range(n):
+        vt += t_row[i] * v[i]
+    mu = model.c_mu[c]
+    th = np.tanh(vt / WALL_SLIP_SPEED)
+    ft = mu * f * th
+    c_ft[c] = ft
+    for i in range(n):
+        if t_row[i] != 0.0:
+            F[i] += ft * t_row[i]
+            if want_tangent:
+                for j in range(n):
+                    KT[i, j] += mu * th * kf * t_row[i] * b[j]
+                    CT[i, j] += t_row[i] * (mu * th * cf * b[j]
+                                            + mu * f * (1.0 - th * th) / WALL_SLIP_SPEED
+                                            * t_row[j])
+
+
 @njit(cache=True)
 def internal_force(model, state, work):
     """The state's forces at its own (u, v), without tangents (the initial equilibrium): element
     and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
     _internal_force(state.u, state.v, model, state.el_S, state.c_H, state.c_closed, state.el_f,
                     state.el_d, state.c_f, state.c_d, state.F, work.KT, work.CT, False,
-                    state.u.size)
+                    state.u.size, state.b_S, state.b_f, state.c_ft, work.k22)

@@ -5,6 +5,7 @@ lands on the turning points where a yielding element unloads (:func:`find_turn`)
 
 from femoat.compilation.jit import njit
 from femoat.integration.interpolants import crossing, hermite
+from femoat.plan.bearing import plan_friction_pendulum_z, plan_friction_pendulum_z_trial
 from femoat.structure.materials.kernels import material_commit, material_trial
 
 
@@ -25,6 +26,58 @@ KINK_RESOLUTION = 2.0 ** -KINK_BISECTIONS
 def _element_rates(e, model, v):
     i, j = model.el_i[e], model.el_j[e]
     return v[i] - (v[j] if j >= 0 else 0.0)
+
+
+@njit(cache=True, inline="always")
+def _bearing_path(e, th, hh, model, state, work):
+    """The plan bearing ``e``'s displacement (u_x, u_y) [in] at fraction ``th`` of the trial
+    step, on the cubic Hermite interpolant of each component."""
+    ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+    ux, _ = hermite(th, hh, state.u[ix], state.v[ix], work.u[ix], work.v[ix])
+    uy, _ = hermite(th, hh, state.u[iy], state.v[iy], work.u[iy], work.v[iy])
+    return ux, uy
+
+
+@njit(cache=True, inline="always")
+def _bearing_kink(e, hh, model, state, work):
+    """Fraction θ just past the plan bearing ``e``'s change between sticking and sliding inside
+    the trial step (|z_trial| crossing 1 along the step's path, each point from the committed
+    state), 2 when it stays on one branch."""
+    p, s = model.b_P[e], state.b_S[e]
+    lo, hi = KINK_RESOLUTION, 1.0
+    ux, uy = _bearing_path(e, lo, hh, model, state, work)
+    slide0 = plan_friction_pendulum_z_trial(p, s, ux, uy) > 1.0
+    ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+    if (plan_friction_pendulum_z_trial(p, s, work.u[ix], work.u[iy]) > 1.0) == slide0:
+        return 2.0
+    for _ in range(KINK_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        ux, uy = _bearing_path(e, mid, hh, model, state, work)
+        if (plan_friction_pendulum_z_trial(p, s, ux, uy) > 1.0) == slide0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+@njit(cache=True, inline="always")
+def _bearing_turn(e, hh, model, state, work):
+    """Fraction θ just past the point where the sliding plan bearing ``e`` turns back (its
+    velocity along the committed friction direction z crosses zero: it unloads into sticking),
+    2 when it does not turn inside the step or is sticking."""
+    zx, zy = plan_friction_pendulum_z(state.b_S[e])
+    if zx * zx + zy * zy < 1.0 - 1e-9:
+        return 2.0
+    ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+    r0 = zx * state.v[ix] + zy * state.v[iy]
+    r1 = zx * work.v[ix] + zy * work.v[iy]
+    if not (r0 > 0.0 and r1 < 0.0):
+        return 2.0
+    th = crossing(r0, zx * state.a[ix] + zy * state.a[iy], r1,
+                  zx * work.a[ix] + zy * work.a[iy], hh)
+    if th <= KINK_RESOLUTION or th >= 1.0:
+        return 2.0
+    return min(1.0, th + KINK_RESOLUTION)
 
 
 @njit(cache=True, inline="always")
@@ -61,6 +114,10 @@ def find_kink(hh, model, state, work):
                 hi = mid
         if hi < theta:
             theta = hi
+    for e in range(model.b_dofs.shape[0]):
+        th = _bearing_kink(e, hh, model, state, work)
+        if th < theta:
+            theta = th
     return theta
 
 
@@ -100,6 +157,10 @@ def find_turn(hh, model, state, work):
         if abs(k_back - k_on) <= KINK_RATIO * max(abs(k_on), abs(k_back)):
             continue
         th = min(1.0, th + KINK_RESOLUTION)
+        if th < theta:
+            theta = th
+    for e in range(model.b_dofs.shape[0]):
+        th = _bearing_turn(e, hh, model, state, work)
         if th < theta:
             theta = th
     return theta

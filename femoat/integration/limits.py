@@ -24,7 +24,7 @@ from femoat.compilation.jit import njit
 
 # quantity codes (the compiled dispatcher branches on them)
 ELEMENT_DEFORMATION, WALL_DISPLACEMENT, CONTACT_FORCE, DISPLACEMENT, VELOCITY, \
-    ABSOLUTE_ACCELERATION = range(6)
+    ABSOLUTE_ACCELERATION, PLAN_DISPLACEMENT = range(7)
 
 QUANTITIES = {
     "element_deformation": (ELEMENT_DEFORMATION, "in", "element"),
@@ -33,12 +33,14 @@ QUANTITIES = {
     "displacement": (DISPLACEMENT, "in", "dof"),
     "velocity": (VELOCITY, "in/s", "dof"),
     "absolute_acceleration": (ABSOLUTE_ACCELERATION, "in/s^2", "building dof"),
+    "plan_displacement": (PLAN_DISPLACEMENT, "in", "bearing"),
 }
 """name: (code, unit of the bound, what ``index`` counts). The quantities, each at the end of
 an accepted step: an element's |deformation| (a story's drift, the isolator's displacement); a
 wall's |displacement| at the impact point; a contact's force (compression positive); a DOF's
 |relative displacement| and |relative velocity| (``PoundingModel.dof_names()``: base, floors,
-wall modes); a building DOF's |absolute acceleration| (base mat, floors)."""
+wall modes); a building DOF's |absolute acceleration| (base mat, floors, along the DOF's
+axis); a plan bearing's plan displacement √(u_x² + u_y²) (:mod:`femoat.plan`)."""
 
 # columns of the packed limits array (one row per limit; all float64 for the compiled loop)
 L_QUANTITY, L_INDEX, L_BOUND, L_RUNAWAY = range(4)
@@ -95,7 +97,8 @@ def pack_limits(limits, packed):
     """The (m, N_COLUMNS) float64 array of ``limits`` (a sequence of :class:`Limit`) for the
     compiled loop, each index checked against ``packed``."""
     counts = {"element": packed.el_code.size, "contact": packed.c_code.size,
-              "dof": packed.n, "building dof": packed.n_struct}
+              "dof": packed.n, "building dof": packed.n_struct,
+              "bearing": getattr(packed, "bearing_dofs", np.zeros(0)).size // 2}
     out = np.zeros((len(limits), N_COLUMNS))
     for r, lim in enumerate(limits):
         if not isinstance(lim, Limit):
@@ -125,7 +128,10 @@ def limit_quantity(code, k, n_struct, model, state):
         return abs(state.u[k])
     if code == VELOCITY:
         return abs(state.v[k])
-    return abs(state.a[k] + state.ag_now[0])  # ABSOLUTE_ACCELERATION
+    if code == PLAN_DISPLACEMENT:
+        ix, iy = model.b_dofs[k, 0], model.b_dofs[k, 1]
+        return np.sqrt(state.u[ix] * state.u[ix] + state.u[iy] * state.u[iy])
+    return abs(state.a[k] + state.ag_now[model.dof_axis[k]])  # ABSOLUTE_ACCELERATION
 
 
 @njit(cache=True)

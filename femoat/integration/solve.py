@@ -1,5 +1,6 @@
 """Run the compiled loop on a packed model: validation, buffers, status → exceptions."""
 
+import dataclasses
 import math
 import time as _time
 from dataclasses import dataclass, replace
@@ -16,6 +17,10 @@ from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
 from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
+from femoat.plan.bearing import N_STATE as N_BEARING_STATE
+from femoat.plan.bearing import plan_friction_pendulum_commit, plan_friction_pendulum_energy
+from femoat.plan.model import PackedPlanModel
+from femoat.structure.materials.friction_pendulum import N_PARAMS as N_BEARING_PARAMS
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
@@ -179,9 +184,17 @@ class _Start(NamedTuple):
 def _inputs(packed, ag, dt_rec, duration, u0, v0):
     """The validated inputs: (packed in the kernels' layout, ag as float array, u, v)."""
     packed = _canonical(packed)
-    ag = np.ascontiguousarray(ag, dtype=float)
-    if ag.ndim != 1 or ag.size < 2 or not np.all(np.isfinite(ag)):
-        raise ValueError("ag must be a 1-D array of at least 2 finite accelerations [in/s²].")
+    components = _ground(packed).shape[1]
+    ag = np.array(ag, dtype=float)
+    if components == 1 and ag.ndim == 1:
+        ag = ag[:, None]
+    if (ag.ndim != 2 or ag.shape[0] < 2 or ag.shape[1] != components
+            or not np.all(np.isfinite(ag))):
+        raise ValueError(
+            "ag must be a 1-D array of at least 2 finite accelerations [in/s²]" if components == 1
+            else f"ag must be an array (samples, {components}) of finite accelerations [in/s²], "
+                 "one column per ground component (x, y), at least 2 samples.")
+    ag = np.ascontiguousarray(ag)
     if not (math.isfinite(dt_rec) and dt_rec > 0):
         raise ValueError(f"dt_rec = {dt_rec!r} must be a positive sample interval [s].")
     if not (math.isfinite(duration) and duration > 0):
@@ -232,26 +245,35 @@ def _bundles(packed, ag, u, v, settings):
     copies of the states it advances (the packed model stays reusable), its scratch."""
     n, n_explicit = packed.n, settings.n_explicit
     nel, ncon = packed.el_code.size, packed.c_code.size
-    model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.r, ag=ag, el_i=packed.el_i,
-                  el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P, c_B=packed.c_B,
-                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
+    plan = _plan_arrays(packed)
+    nb, nk = plan.b_dofs.shape[0], ag.shape[1]
+    model = Model(M=packed.M, C=packed.C, K=packed.K, r=_ground(packed), ag=ag,
+                  dof_axis=plan.dof_axis, base_xy=plan.base_xy, el_i=packed.el_i,
+                  el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P,
+                  b_dofs=plan.b_dofs, b_P=plan.b_P, c_B=packed.c_B,
+                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P, c_T=plan.c_T,
+                  c_mu=plan.c_mu,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
     h0 = settings.h_max
-    state = State(t=np.zeros(1), ag_now=np.zeros(1),
+    state = State(t=np.zeros(1), ag_now=np.zeros(nk),
                   u=u, v=v, a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(),
                   el_f=np.zeros(nel), el_d=np.zeros(nel), el_W=np.zeros(nel),
+                  b_S=plan.b_S.copy(), b_f=np.zeros((nb, 2)), b_W=np.zeros(nb),
                   c_H=packed.c_H.copy(), c_f=np.zeros(ncon), c_d=np.zeros(ncon),
-                  c_W=np.zeros(ncon), c_closed=np.zeros(ncon, dtype=np.int64),
+                  c_W=np.zeros(ncon), c_ft=np.zeros(ncon), c_Wt=np.zeros(ncon),
+                  c_closed=np.zeros(ncon, dtype=np.int64),
                   energy=np.zeros(codes.N_ENERGY), stats=np.zeros(codes.N_STATS, dtype=np.int64),
                   first_exceed=np.full(settings.limits.shape[0], -1.0),
-                  pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 2)),
+                  pk=np.zeros(pk_size(packed.n_struct, ncon)), pk_ring=np.zeros((2, 3 * n + 1 + nk)),
                   pk_n=np.zeros(1, dtype=np.int64), ep=np.zeros((ncon, N_EP)),
                   h=np.array([h0]), h_cruise=np.array([h0]),
                   shortened=np.zeros(1, dtype=np.int64), landing=np.full(1, -1, dtype=np.int64),
                   since_record=np.zeros(1, dtype=np.int64))
     work = Work(u=np.zeros(n), v=np.zeros(n), a=np.zeros(n), F=np.zeros(n), KT=np.zeros((n, n)),
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
-                ed=np.zeros(nel), cf=np.zeros(ncon), cd=np.zeros(ncon),
+                ed=np.zeros(nel), bf=np.zeros((nb, 2)), cf=np.zeros(ncon), cd=np.zeros(ncon),
+                cft=np.zeros(ncon), ag1=np.zeros(nk), ag_stage=np.zeros(nk),
+                k22=np.zeros((2, 2, 2)),
                 kv=np.zeros((N_STAGES, n)), ka=np.zeros((N_STAGES, n)), eu=np.zeros(n),
                 ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
@@ -264,10 +286,10 @@ def _start(kern, packed, model, state, settings, work, channels_asked, history, 
     """The initial equilibrium M·a0 = p0 − F(u0, v0), the running peaks and episodes started,
     the recorder: a :class:`_Start`."""
     n, nel, ncon = packed.n, packed.el_code.size, packed.c_code.size
-    ag0 = kern.ground_accel(model.ag, settings.dt_record, 0.0)
-    state.ag_now[0] = ag0
+    kern.ground_accel(model.ag, settings.dt_record, 0.0, state.ag_now)
+    ag0 = state.ag_now.copy()
     kern.internal_force(model, state, work)
-    state.a[:] = np.linalg.solve(packed.M, -packed.r * ag0 - state.F)
+    state.a[:] = np.linalg.solve(packed.M, -(model.r * ag0[None, :]).sum(axis=1) - state.F)
     a_initial, el_f_initial, el_d_initial = (state.a.copy(), state.el_f.copy(),
                                              state.el_d.copy())
     kern.start_peaks(model, state, settings)
@@ -277,8 +299,9 @@ def _start(kern, packed, model, state, settings, work, channels_asked, history, 
                 f"u0 puts the {packed.c_names[c]} wall in contact at t = 0 (indentation "
                 f"{state.c_d[c]:.3g} in); start the base mat inside the gap.")
 
-    e_initial = _initial_energy(kern, packed, state.u, state.v)
-    sizes = dict(dofs=n, elements=nel, contacts=ncon)
+    e_initial = _initial_energy(kern, packed, model, state.u, state.v)
+    sizes = dict(dofs=n, elements=nel, contacts=ncon, ground=ag0.size,
+                 bearings=state.b_f.shape[0])
     cols = registry.columns(sizes, channels_asked, history)
     if history:
         # room for every record sample plus contact steps (grown by doubling when short, up to
@@ -362,8 +385,7 @@ def _history(kern, backend, packed, model, state, rec, start, history, status, c
                    events=int(stats[codes.S_EVENTS]),
                    cpu_seconds=cpu, recorded=int(m) if history else 0, kernels=backend,
                    t_reached=float(state.t[0])),
-        energy=_energy(kern, packed, state.u, state.v, state.el_S, state.el_W, state.c_H,
-                       state.c_d, state.c_W, state.c_closed, state.energy, start.energy),
+        energy=_energy(kern, packed, model, state, start.energy),
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
         stopped_at_limit=status.code == "limit",
         peaks=state.pk.copy(),
@@ -414,6 +436,7 @@ def error_scales(packed, pga):
     scale_open = np.full(n, gap_scale)
     scale_contact = scale_open.copy()
     scale_contact[0] = d_me
+    scale_contact[np.flatnonzero(np.any(packed.c_B[:, :ns] != 0.0, axis=0))] = d_me  # (in plan)
     scale_contact[ns:] = d_me
     err_ref = np.full(n, -1, dtype=np.int64)
     for role, i, j, mat in zip(packed.el_roles, packed.el_i, packed.el_j, packed.el_materials):
@@ -426,8 +449,9 @@ def error_scales(packed, pga):
     return scale_open, scale_contact, err_ref, scale_accel
 
 
-_INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code")
-_FLOAT_ARRAYS = ("M", "C", "K", "r", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H")
+_INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code", "bearing_dofs")
+_FLOAT_ARRAYS = ("M", "C", "K", "r", "R", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H",
+                 "bearing_P", "bearing_S", "c_T", "c_friction")
 
 
 def _canonical(packed):
@@ -435,12 +459,49 @@ def _canonical(packed):
     codes and indices. (The ahead-of-time module checks only the item size of an argument, so
     a strided or wrongly typed array would be misread rather than rejected.)"""
     changes = {}
+    fields = {f.name for f in dataclasses.fields(packed)}
     for names, dtype in ((_INT_ARRAYS, np.int64), (_FLOAT_ARRAYS, np.float64)):
         for name in names:
+            if name not in fields:
+                continue
             a = getattr(packed, name)
             if a.dtype != dtype or not a.flags.c_contiguous:
                 changes[name] = np.ascontiguousarray(a, dtype=dtype)
     return replace(packed, **changes) if changes else packed
+
+
+def _ground(packed):
+    """The ground load's influence matrix (n, components) [kip·s²/in]: a 1D model's r as one
+    column, a plan model's R (x, y)."""
+    r = np.asarray(packed.r, dtype=np.float64)
+    return np.ascontiguousarray(r.reshape(r.shape[0], -1))
+
+
+class _PlanArrays(NamedTuple):
+    """The kernels' arrays a plan model adds (empty or zero for a 1D model)."""
+
+    dof_axis: np.ndarray
+    base_xy: np.ndarray
+    b_dofs: np.ndarray
+    b_P: np.ndarray
+    b_S: np.ndarray
+    c_T: np.ndarray
+    c_mu: np.ndarray
+
+
+def _plan_arrays(packed):
+    """:class:`_PlanArrays` of ``packed``."""
+    n, nc = packed.n, packed.c_code.size
+    if not isinstance(packed, PackedPlanModel):
+        return _PlanArrays(np.zeros(n, dtype=np.int64), np.array([-1, -1], dtype=np.int64),
+                           np.zeros((0, 2), dtype=np.int64), np.zeros((0, N_BEARING_PARAMS)),
+                           np.zeros((0, N_BEARING_STATE)), np.zeros((nc, n)), np.zeros(nc))
+    nb = packed.bearing_dofs.size // 2
+    return _PlanArrays(
+        packed.dof_axis, np.ascontiguousarray(packed.layout.floor_dofs[0, :2], dtype=np.int64),
+        packed.bearing_dofs.reshape(nb, 2), packed.bearing_P.reshape(nb, N_BEARING_PARAMS),
+        packed.bearing_S.reshape(nb, N_BEARING_STATE), np.ascontiguousarray(packed.c_T),
+        np.ascontiguousarray(packed.c_friction))
 
 
 def kernels(backend="auto"):
@@ -493,35 +554,47 @@ def _quadratic(x, A):
     return math.fsum(((x[:, None] * A) * x[None, :])[A != 0.0].tolist())
 
 
-def _initial_energy(kern, packed, u, v):
-    """Kinetic plus strain energy of the initial state [kip·in] (elements start virgin at u)."""
+def _initial_energy(kern, packed, model, u, v):
+    """Kinetic plus strain energy of the initial state [kip·in] (elements and plan bearings
+    start virgin at u)."""
     e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
     el = np.zeros(packed.el_code.size)
     kern.initial_element_energies(packed.el_i, packed.el_j, packed.el_code, packed.el_P,
                                   packed.el_S, u, np.zeros(packed.el_S.shape[1]), el)
     for x in el.tolist():
         e += x
+    for b, (ix, iy) in enumerate(model.b_dofs):
+        s0 = _plan_arrays(packed).b_S[b].copy()
+        plan_friction_pendulum_commit(model.b_P[b], s0, u[ix], u[iy], v[ix], v[iy])
+        e += plan_friction_pendulum_energy(model.b_P[b], s0)
     return float(e)
 
 
-def _energy(kern, packed, u, v, el_S, el_W, c_H, c_d, c_W, c_closed, energy, e_initial):
+def _energy(kern, packed, model, state, e_initial):
+    """The energy balance [kip·in] at the end of the run and its relative residual: the plan
+    bearings' friction counts with the isolator's, the walls' friction with the contacts'."""
+    u, v, el_S, el_W = state.u, state.v, state.el_S, state.el_W
+    c_H, c_d, c_W, c_closed, energy = state.c_H, state.c_d, state.c_W, state.c_closed, state.energy
     kinetic = 0.5 * _quadratic(v, packed.M)
     linear_strain = 0.5 * _quadratic(u, packed.K)
     el_rec, c_rec = np.zeros(packed.el_code.size), np.zeros(packed.c_code.size)
     kern.stored_energies(packed.el_code, packed.el_P, el_S, packed.c_code, packed.c_P, c_H, c_d,
                          c_closed, el_rec, c_rec)
     el_diss = el_W - el_rec
+    b_rec = np.array([plan_friction_pendulum_energy(model.b_P[b], state.b_S[b])
+                      for b in range(model.b_dofs.shape[0])])
+    b_diss = state.b_W - b_rec
     iso = [e for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
     sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]
     out = dict(
         initial=e_initial,
         input=float(energy[codes.E_INPUT]),
         kinetic=float(kinetic),
-        recoverable=math.fsum([linear_strain, *el_rec, *c_rec]),
+        recoverable=math.fsum([linear_strain, *el_rec, *b_rec, *c_rec]),
         hysteretic=math.fsum(el_diss[sto]),
-        friction=math.fsum(el_diss[iso]),
+        friction=math.fsum([*el_diss[iso], *b_diss]),
         viscous=float(energy[codes.E_VISCOUS]),
-        contact=math.fsum(c_W - c_rec),
+        contact=math.fsum([*(c_W - c_rec), *state.c_Wt]),
     )
     accounted = sum(out[k] for k in ("kinetic", "recoverable", "hysteretic", "friction",
                                      "viscous", "contact"))

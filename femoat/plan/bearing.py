@@ -76,6 +76,21 @@ def _z(p, s, ux, uy):
 
 
 @njit(cache=True)
+def plan_friction_pendulum_z_trial(p, s, ux, uy):
+    """|z_trial| [-] at the trial (ux, uy) [in] from the committed state ``s``: above 1 the
+    bearing slides, at or below it sticks (the branch the solver's kink search follows)."""
+    zx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
+    zy = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
+    return np.sqrt(zx * zx + zy * zy)
+
+
+@njit(cache=True)
+def plan_friction_pendulum_z(s):
+    """The committed hysteretic vector (z_x, z_y) [-] (on the unit circle while sliding)."""
+    return s[_ZCX], s[_ZCY]
+
+
+@njit(cache=True)
 def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
     """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] (2, 2) and ∂f/∂v ``c`` [kip·s/in] (2, 2),
     written in place, at the trial (ux, uy) [in], (vx, vy) [in/s] from the committed state

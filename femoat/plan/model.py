@@ -239,3 +239,32 @@ class PackedPlanModel:
     @property
     def n(self):
         return self.M.shape[0]
+
+    @property
+    def n_struct(self):
+        """Number of building DOFs (x, y per floor), the first ones."""
+        return self.layout.n_struct
+
+    @property
+    def dof_names(self):
+        """One name per DOF (:class:`PlanLayout`)."""
+        return list(self.layout.names)
+
+    @property
+    def r(self):
+        """The ground load's influence matrix ``R`` (n, 2) [kip·s²/in]."""
+        return self.R
+
+    @property
+    def el_names(self):
+        """Each uniaxial element's name and axis (``"story1_x"``, ``"isolator_y"``, ...)."""
+        return [f"{role.name}_{AXES[a]}" for role, a in zip(self.el_roles, self.el_axis)]
+
+    @property
+    def dof_axis(self):
+        """(n,) the plan axis (0 x, 1 y) each DOF moves along (a wall mode: its normal's)."""
+        axis = np.zeros(self.n, dtype=np.int64)
+        axis[self.layout.floor_dofs[:, 1]] = 1
+        for w, cols in zip(self.walls, self.layout.wall_dofs):
+            axis[list(cols)] = w.axis
+        return axis

@@ -37,7 +37,7 @@ Units: kip, in, s.
 import numpy as np
 
 from femoat.compilation.jit import njit
-from femoat.integration.forces import _internal_force
+from femoat.integration.forces import _internal_force, ground_load
 from femoat.integration.codes import E_INPUT, E_VISCOUS, S_REJECT_ERR
 
 # ---- the Dormand-Prince 5(4) tableau -------------------------------------------------------
@@ -165,8 +165,8 @@ def _walls_exact(hh, ag0, ag1, nb, model, state, work):
         if abs(work.wexp_h[i] - hh) > 1e-9 * hh:
             wall_propagator(m, c, k, hh, row, work.wscratch)
             work.wexp_h[i] = hh
-        p0 = -r[i] * ag0
-        p1 = -r[i] * ag1
+        p0 = ground_load(r, i, ag0)
+        p1 = ground_load(r, i, ag1)
         dp = (p1 - p0) / hh
         beta = dp / k
         alpha = (p0 - c * beta) / k
@@ -220,12 +220,14 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
             work.v[i] = v0[i] + hh * sv
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
                         work.ed, work.cf, work.cd, work.F, work.KT, work.CT,
-                        s == N_STAGES - 1, nb)
-        ag = ag0 + DP_C[s] * (ag1 - ag0)
+                        s == N_STAGES - 1, nb, state.b_S, work.bf, work.cft, work.k22)
+        ag = work.ag_stage
+        for k in range(ag.size):
+            ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
         for i in range(nb):
             acc = 0.0
             for j in range(nb):
-                acc += Minv[i, j] * (-r[j] * ag - work.F[j])
+                acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
             if not np.isfinite(acc):
                 return False
             ka[s, i] = acc
@@ -246,11 +248,13 @@ def _building_energy(hh, ag0, ag1, nb, model, work):
         b = DP_A[N_STAGES - 1, s]
         if b == 0.0:
             continue
-        ag = ag0 + DP_C[s] * (ag1 - ag0)
+        ag = work.ag_stage
+        for k in range(ag.size):
+            ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
         p_in = 0.0
         p_visc = 0.0
         for i in range(nb):
-            p_in += -r[i] * ag * kv[s, i]
+            p_in += ground_load(r, i, ag) * kv[s, i]
             cv = 0.0
             for j in range(nb):
                 cv += C[i, j] * kv[s, j]
@@ -308,7 +312,7 @@ def explicit_step(hh, ag1, model, state, settings, work):
     the step's energy increments (``de``). Returns the scaled error (inf: a stage was
     not finite, the step must shrink)."""
     nb = settings.n_explicit
-    ag0 = state.ag_now[0]
+    ag0 = state.ag_now
     work.de[E_INPUT] = 0.0
     work.de[E_VISCOUS] = 0.0
     if not _stages(hh, ag0, ag1, nb, model, state, work):

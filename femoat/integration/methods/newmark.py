@@ -20,7 +20,7 @@ import numpy as np
 from femoat.compilation.jit import njit
 from femoat.integration.codes import S_NEWTON, S_REJECT_NEWTON
 from femoat.integration.events import H_START, first_contact_step, open_episode, restart
-from femoat.integration.forces import _internal_force, _solve_dense, contact_rate
+from femoat.integration.forces import _internal_force, _solve_dense, contact_rate, ground_load
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
 
 NAME = "newmark"
@@ -141,8 +141,8 @@ def _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work):
     Fn = state.F
     w_a, w_F, w_KT, w_CT, w_A, w_b = work.a, work.F, work.KT, work.CT, work.A, work.b
     for i in range(w_a.size):
-        p1 = -r[i] * ag1
-        p0 = -r[i] * ag0
+        p1 = ground_load(r, i, ag1)
+        p0 = ground_load(r, i, ag0)
         if i < nd:
             s = 0.0
             for j in range(nd):
@@ -205,7 +205,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
     scale = settings.scale_contact
     bh2 = beta * hh * hh
     gh = gamma * hh
-    ag0 = state.ag_now[0]
+    ag0 = state.ag_now
     for i in range(state.a.size):
         work.a[i] = state.a[i]
     converged = False
@@ -217,7 +217,8 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         amax = _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         nd = _dense_size(n_coupled, any_closed, model, work)
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
-                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, True, nd)
+                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, True, nd,
+                        state.b_S, work.bf, work.cft, work.k22)
         _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work)
         if it > 1 and _residual_is_small(bh2, ntol, amax, scale, work):
             converged = True
@@ -236,7 +237,8 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         # final kinematics and forces at the converged acceleration
         _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
-                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, False, nd)
+                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, False, nd,
+                        state.b_S, work.bf, work.cft, work.k22)
     return converged
 
 

@@ -22,8 +22,9 @@ class Channel:
 
     name : str  the result's attribute and the saved file's key
     buffer : str  the recorder's buffer (written by ``recorder.record``)
-    width : str or None  "dofs", "elements" or "contacts": a column each; None: one value per
-        sample
+    width : str or None  "dofs", "elements", "contacts" or "ground" (ground components): a
+        column each (one ground component, a 1D model's: one value per sample); None: one
+        value per sample
     unit : str  what the values are [unit]
     group : str or None  the ``channels=`` name that records it (None: always recorded)
     initial : str or None  the field of the initial state holding its row at t = 0 (None:
@@ -45,7 +46,8 @@ CHANNELS = (
     Channel("displacement", "u", "dofs", "in (relative to ground, per DOF)", None, "u"),
     Channel("velocity", "v", "dofs", "in/s (relative, per DOF)", "velocity", "v"),
     Channel("acceleration", "a", "dofs", "in/s^2 (relative, per DOF)", "acceleration", "a"),
-    Channel("ground_acceleration", "ag", None, "in/s^2", None, "ag"),
+    Channel("ground_acceleration", "ag", "ground", "in/s^2 (per ground component: x, y)", None,
+            "ag"),
     Channel("element_force", "ef", "elements", "kip (per element)", "elements", "el_f"),
     Channel("element_deformation", "ed", "elements", "in (per element)", "elements", "el_d"),
     Channel("contact_force", "cf", "contacts", "kip (per contact)", None, None),
@@ -118,11 +120,17 @@ def histories(rec, m, initial):
             first = np.array([getattr(initial, c.initial)], dtype=c.dtype)
         else:  # (a channel not requested has no columns: its initial row is cut to none)
             first = np.asarray(getattr(initial, c.initial), dtype=c.dtype)[None, :buf.shape[1]]
-        out[c.name] = np.concatenate([first, buf[:m]])
+        out[c.name] = _squeezed(c, np.concatenate([first, buf[:m]]))
     return out
+
+
+def _squeezed(channel, arr):
+    """A ground channel of one component (a 1D model) as one value per sample."""
+    return arr[:, 0] if channel.width == "ground" and arr.shape[1] == 1 else arr
 
 
 def no_histories(sizes):
     """{channel: array with no rows and every column}: the histories of a run that kept none."""
-    return {c.name: np.zeros((0,) if c.width is None else (0, sizes[c.width]), dtype=c.dtype)
+    return {c.name: _squeezed(c, np.zeros((0,) if c.width is None else (0, sizes[c.width]),
+                                          dtype=c.dtype))
             for c in CHANNELS}

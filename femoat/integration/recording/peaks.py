@@ -15,11 +15,15 @@ An interval is judged once the sample after it is recorded: an event at a commit
 still change the contact flags of the last sample (``recorder.mark_last_sample``). The last
 interval is judged by :func:`finish_peaks` after the loop.
 
-Layout of ``state.pk`` for ns building DOFs and nc contacts: ``[0]`` base displacement, ``[1:ns]``
-story drifts, ``[ns:ns+nc]`` wall displacements [in], ``[ns+nc:2ns+nc]`` absolute
-accelerations [in/s²] (base, floors), ``[2ns+nc]`` base velocity [in/s], ``[2ns+nc+1]``
-indentation [in]. ``state.pk_ring`` holds the last two samples (t, u, v, a, a_g);
-``state.pk_n[0]`` how many.
+Layout of ``state.pk`` for ns building DOFs and nc contacts: ``[0:ns]`` each building DOF's
+displacement against its reference (``settings.err_ref``: the floor below along the same
+axis, none for the base mat): in 1D ``[0]`` the base displacement and ``[1:ns]`` the story
+drifts, in plan the same per axis in the DOF order of :mod:`femoat.plan.model`;
+``[ns:ns+nc]`` wall displacements [in], ``[ns+nc:2ns+nc]`` absolute accelerations [in/s²]
+(each building DOF along its axis, ``model.dof_axis``), ``[2ns+nc]`` base velocity [in/s]
+(DOF 0), ``[2ns+nc+1]`` indentation [in], ``[2ns+nc+2]`` the base mat's plan displacement
+√(u_x² + u_y²) [in] (plan models, ``model.base_xy``; 0 in 1D). ``state.pk_ring`` holds the
+last two samples (t, u, v, a, a_g per ground component); ``state.pk_n[0]`` how many.
 """
 
 import numpy as np
@@ -31,7 +35,57 @@ from femoat.integration.codes import S_NOUT
 
 def size(ns, nc):
     """Length of the peaks array for ns building DOFs and nc contacts."""
-    return 2 * ns + nc + 2
+    return 2 * ns + nc + 3
+
+
+@njit(cache=True, inline="always")
+def _hermite3(th, x0, d0, x1, d1):
+    """The cubic Hermite interpolant (end values x0, x1, end slopes d0, d1 in θ) at ``th``
+    and its first and second derivatives in θ."""
+    t2 = th * th
+    t3 = t2 * th
+    x = (2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * d0 + (-2 * t3 + 3 * t2) * x1 \
+        + (t3 - t2) * d1
+    dx = (6 * t2 - 6 * th) * x0 + (3 * t2 - 4 * th + 1) * d0 + (-6 * t2 + 6 * th) * x1 \
+        + (3 * t2 - 2 * th) * d1
+    ddx = (12 * th - 6) * x0 + (6 * th - 4) * d0 + (-12 * th + 6) * x1 + (6 * th - 2) * d1
+    return x, dx, ddx
+
+
+PLAN_SAMPLES = 16
+"""Points of an interval where the plan crest's search starts (then Newton on d|u|²/dθ = 0)."""
+
+
+@njit(cache=True, inline="always")
+def _plan_crest(h, x0, vx0, x1, vx1, y0, vy0, y1, vy1, best):
+    """max(best, the crest of |(x(θ), y(θ))| inside an interval of length h, each component
+    its cubic Hermite interpolant): the largest of PLAN_SAMPLES points, refined by Newton on
+    the stationarity of |u|² (a polynomial of degree 6)."""
+    dx0, dx1, dy0, dy1 = h * vx0, h * vx1, h * vy0, h * vy1
+    bx = max(abs(x0), abs(x1)) + (4.0 / 27.0) * (abs(dx0) + abs(dx1))
+    by = max(abs(y0), abs(y1)) + (4.0 / 27.0) * (abs(dy0) + abs(dy1))
+    if bx * bx + by * by <= best * best:
+        return best
+    th_best, r2_best = 0.0, -1.0
+    for j in range(1, PLAN_SAMPLES):
+        th = j / PLAN_SAMPLES
+        x, _, _ = _hermite3(th, x0, dx0, x1, dx1)
+        y, _, _ = _hermite3(th, y0, dy0, y1, dy1)
+        if x * x + y * y > r2_best:
+            th_best, r2_best = th, x * x + y * y
+    th = th_best
+    for _ in range(6):
+        x, dx, ddx = _hermite3(th, x0, dx0, x1, dx1)
+        y, dy, ddy = _hermite3(th, y0, dy0, y1, dy1)
+        g = x * dx + y * dy
+        dg = dx * dx + x * ddx + dy * dy + y * ddy
+        if dg >= 0.0:  # not a crest's neighbourhood: keep the sample
+            break
+        th = min(1.0, max(0.0, th - g / dg))
+    x, _, _ = _hermite3(th, x0, dx0, x1, dx1)
+    y, _, _ = _hermite3(th, y0, dy0, y1, dy1)
+    r2 = max(r2_best, x * x + y * y)
+    return max(best, np.sqrt(r2))
 
 
 @njit(cache=True, inline="always")
@@ -127,22 +181,26 @@ def _endpoint(t, model, settings, u, v, a, ag, c_d, pk):
     """The sample's own values into the running maxima."""
     ns = settings.n_struct
     nc = model.c_gap.size
-    pk[0] = max(pk[0], abs(u[0]))
-    for k in range(1, ns):
-        pk[k] = max(pk[k], abs(u[k] - u[k - 1]))
+    ref, axis = settings.err_ref, model.dof_axis
+    for k in range(ns):
+        j = ref[k]
+        pk[k] = max(pk[k], abs(u[k] - u[j]) if j >= 0 else abs(u[k]))
     for c in range(nc):
         pk[ns + c] = max(pk[ns + c], abs(_wall(model.c_B, c, u, ns)))
     for i in range(ns):
-        pk[ns + nc + i] = max(pk[ns + nc + i], abs(a[i] + ag))
+        pk[ns + nc + i] = max(pk[ns + nc + i], abs(a[i] + ag[axis[i]]))
     pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v[0]))
     for c in range(nc):
         pk[2 * ns + nc + 1] = max(pk[2 * ns + nc + 1], c_d[c])
+    bx, by = model.base_xy[0], model.base_xy[1]
+    if bx >= 0:
+        pk[2 * ns + nc + 2] = max(pk[2 * ns + nc + 2], np.sqrt(u[bx] * u[bx] + u[by] * u[by]))
 
 
 @njit(cache=True, inline="always")
 def _interval(smooth, model, settings, ring, pk):
     """The crests inside the interval between the two samples of ``ring``."""
-    n = (ring.shape[1] - 2) // 3
+    n = model.M.shape[0]
     ns = settings.n_struct
     nc = model.c_gap.size
     t0, t1 = ring[0, 0], ring[1, 0]
@@ -152,11 +210,15 @@ def _interval(smooth, model, settings, ring, pk):
     u0, u1 = ring[0, 1:1 + n], ring[1, 1:1 + n]
     v0, v1 = ring[0, 1 + n:1 + 2 * n], ring[1, 1 + n:1 + 2 * n]
     a0, a1 = ring[0, 1 + 2 * n:1 + 3 * n], ring[1, 1 + 2 * n:1 + 3 * n]
-    ag0, ag1 = ring[0, 1 + 3 * n], ring[1, 1 + 3 * n]
-    pk[0] = _hermite_crest(h, u0[0], v0[0], u1[0], v1[0], pk[0])
-    for k in range(1, ns):
-        pk[k] = _hermite_crest(h, u0[k] - u0[k - 1], v0[k] - v0[k - 1], u1[k] - u1[k - 1],
-                               v1[k] - v1[k - 1], pk[k])
+    ag0, ag1 = ring[0, 1 + 3 * n:], ring[1, 1 + 3 * n:]
+    ref, axis = settings.err_ref, model.dof_axis
+    for k in range(ns):
+        j = ref[k]
+        if j >= 0:
+            pk[k] = _hermite_crest(h, u0[k] - u0[j], v0[k] - v0[j], u1[k] - u1[j],
+                                   v1[k] - v1[j], pk[k])
+        else:
+            pk[k] = _hermite_crest(h, u0[k], v0[k], u1[k], v1[k], pk[k])
     c_B = model.c_B
     for c in range(nc):
         pk[ns + c] = _hermite_crest(h, _wall(c_B, c, u0, ns), _wall(c_B, c, v0, ns),
@@ -168,8 +230,12 @@ def _interval(smooth, model, settings, ring, pk):
             pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v0[0] + 0.5 * h * a0[0] * th))
     if smooth and settings.quintic_peaks:
         for i in range(ns):
-            pk[ns + nc + i] = _quintic_accel_crest(h, u0[i], v0[i], a0[i], ag0, u1[i], v1[i],
-                                                   a1[i], ag1, pk[ns + nc + i])
+            pk[ns + nc + i] = _quintic_accel_crest(h, u0[i], v0[i], a0[i], ag0[axis[i]], u1[i],
+                                                   v1[i], a1[i], ag1[axis[i]], pk[ns + nc + i])
+    bx, by = model.base_xy[0], model.base_xy[1]
+    if bx >= 0:
+        pk[2 * ns + nc + 2] = _plan_crest(h, u0[bx], v0[bx], u1[bx], v1[bx], u0[by], v0[by],
+                                          u1[by], v1[by], pk[2 * ns + nc + 2])
 
 
 @njit(cache=True, inline="always")
@@ -191,9 +257,10 @@ def _keep(t, model, state, settings):
         ring[row, 1 + i] = state.u[i]
         ring[row, 1 + n + i] = state.v[i]
         ring[row, 1 + 2 * n + i] = state.a[i]
-    ring[row, 1 + 3 * n] = state.ag_now[0]
+    for k in range(state.ag_now.size):
+        ring[row, 1 + 3 * n + k] = state.ag_now[k]
     state.pk_n[0] = row + 1
-    _endpoint(t, model, settings, state.u, state.v, state.a, state.ag_now[0], state.c_d,
+    _endpoint(t, model, settings, state.u, state.v, state.a, state.ag_now, state.c_d,
               state.pk)
 
 

@@ -48,7 +48,8 @@ def record(t, model, state, settings, rec):
     n_out = state.stats[S_NOUT]
     k = row(n_out, rec.t.shape[0])
     rec.t[k] = t
-    rec.ag[k] = state.ag_now[0]
+    for j in range(rec.ag.shape[1]):
+        rec.ag[k, j] = state.ag_now[j]
     for i in range(rec.u.shape[1]):
         rec.u[k, i] = u[i]
     for i in range(rec.v.shape[1]):
