@@ -176,7 +176,7 @@ def test_impacts_and_wall_peaks_per_side():
         result.wall_displacement("+y")
 
 
-def test_save_load_round_trip_and_plan_history(tmp_path):
+def test_save_load_round_trip_and_the_figures_history(tmp_path):
     r, n = 2.0, 7
     t = sample_times(n)
     packed = PlanModel().pack()
@@ -194,7 +194,7 @@ def test_save_load_round_trip_and_plan_history(tmp_path):
     for name in ARRAY_UNITS:
         np.testing.assert_array_equal(getattr(back, name), getattr(result, name))
     assert back.contact_closed.dtype == np.int8
-    h = back.plan_history("circle")
+    h = PlanHistory.from_result(back, "circle")
     assert isinstance(h, PlanHistory) and h.sides == ("+x", "-x", "+y", "-y")
     np.testing.assert_array_equal(h.base, result.base_displacement)
     assert list(h.impacts()) == [1, 0, 0, 0]
@@ -297,7 +297,7 @@ def test_the_opensees_twin_read_as_a_plan_result():
     for k, key in enumerate(("px", "mx", "py", "my")):
         assert twin["impact_force"][k] <= p[f"peak_impact_force_{key}"] \
             <= 1.01 * twin["impact_force"][k]
-    h = result.plan_history()
+    h = PlanHistory.from_result(result)
     ref = PlanHistory.from_opensees(run, model)
     np.testing.assert_array_equal(h.wall_force, ref.wall_force)
     np.testing.assert_array_equal(h.impacts(), ref.impacts())

@@ -14,7 +14,9 @@ displacements and velocities (:mod:`femoat.dense_peaks`); the base mat's plan di
 |u| = |(u_x, u_y)| from the same interpolant in both directions at once
 (:func:`hermite_norm_max`), not the larger of the two directions' peaks (those are reached at
 different times). Accelerations at the samples, and inside the fifth-order steps of a ``dp5``
-run from the quintic interpolant. Files: ``.npz`` with a JSON ``meta``, as
+run from the quintic interpolant. The plan figures and the top-view render read a result through
+:meth:`femoat.plotting.plan_history.PlanHistory.from_result` (figures are a higher layer than
+results: tests/test_imports.py). Files: ``.npz`` with a JSON ``meta``, as
 :class:`femoat.results.RunResult`.
 """
 
@@ -325,15 +327,6 @@ class PlanRunResult:
             raise ValueError(f"side = {side!r}: the moat has no wall there (its walls: "
                              f"{', '.join(self.sides) or 'none'}).")
         return self.sides.index(side)
-
-    def plan_history(self, title=""):
-        """The :class:`~femoat.plotting.plan_history.PlanHistory` the plan figures and the
-        top-view render read (the base mat's orbit, each wall's contact force)."""
-        from femoat.plotting.plan_history import PlanHistory
-
-        return PlanHistory(time=self.time, base=self.base_displacement,
-                           wall_force=self.contact_force, gaps=self.meta["gaps"],
-                           sides=tuple(self.sides), title=title)
 
     # ---- peaks ---------------------------------------------------------------------------
     def _hermite(self, x, v):
