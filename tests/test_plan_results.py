@@ -301,3 +301,18 @@ def test_the_opensees_twin_read_as_a_plan_result():
     ref = PlanHistory.from_opensees(run, model)
     np.testing.assert_array_equal(h.wall_force, ref.wall_force)
     np.testing.assert_array_equal(h.impacts(), ref.impacts())
+
+
+def test_newmark_rates_of_a_constant_acceleration_are_exact():
+    # Newmark's average-acceleration step is exact for a constant acceleration c: u = c·t²/2
+    # gives u₁ − u₀ = c(t₁² − t₀²)/2 = h·(c·t₀ + c·t₁)/2, so the rates read back from the
+    # displacements are v = c·t (and from those, a = c), however many steps (the twin's
+    # velocities are read this way: test_the_opensees_twin_read_as_a_plan_result).
+    from femoat.plan.results import _newmark_rate
+
+    h, c = 0.01, np.array([3.0, -2.0])
+    t = np.arange(1001) * h
+    u = 0.5 * c[None, :] * t[:, None] ** 2
+    v = _newmark_rate(u, np.zeros(2), h)
+    np.testing.assert_allclose(v, c[None, :] * t[:, None], rtol=0, atol=1e-10)
+    np.testing.assert_allclose(_newmark_rate(v, c, h), np.tile(c, (t.size, 1)), atol=1e-8)

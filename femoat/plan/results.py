@@ -209,14 +209,8 @@ class PlanRunResult:
         u[:, lay.floor_dofs[:, :2].reshape(-1)] = floors.reshape(m, -1)
         for c, cols in enumerate(lay.wall_dofs):  # an SDOF wall: one mode, q = w/φ
             u[:, cols[0]] = result["wall_displacement"][:, c] / -packed.c_B[c, cols[0]]
-        v = np.zeros((m, n))
-        v[0] = 0.0 if v0 is None else np.asarray(v0, dtype=float)
-        for k in range(m - 1):
-            v[k + 1] = 2.0 * (u[k + 1] - u[k]) / dt - v[k]
-        a = np.zeros((m, n))
-        a[0] = np.linalg.solve(packed.M, -packed.R @ ag[0] - packed.C @ v[0])
-        for k in range(m - 1):
-            a[k + 1] = 2.0 * (v[k + 1] - v[k]) / dt - a[k]
+        v = _newmark_rate(u, np.zeros(n) if v0 is None else np.asarray(v0, dtype=float), dt)
+        a = _newmark_rate(v, np.linalg.solve(packed.M, -packed.R @ ag[0] - packed.C @ v[0]), dt)
         struct = lay.floor_dofs[:, :2]
         relative = np.asarray(result["acceleration"]) - ag[:, None, :]
         a[:, struct.reshape(-1)] = relative.reshape(m, -1)
@@ -438,6 +432,16 @@ class PlanRunResult:
         return cls(**arrays, meta=meta)
 
 
+def _newmark_rate(x, rate0, h):
+    """The rates ẋ of the samples x (m, k) of a Newmark average-acceleration run at the step h
+    from ẋ₀ = ``rate0``: x₁ − x₀ = h(ẋ₀ + ẋ₁)/2, so ẋ_{j+1} = 2(x_{j+1} − x_j)/h − ẋ_j. With
+    w_j = (−1)^j·ẋ_j the recursion is w_{j+1} = w_j + (−1)^{j+1}·2(x_{j+1} − x_j)/h, a
+    cumulative sum."""
+    sign = np.where(np.arange(1, x.shape[0]) % 2 == 1, -1.0, 1.0)[:, None]
+    w = np.cumsum(np.vstack([rate0[None, :], sign * 2.0 * np.diff(x, axis=0) / h]), axis=0)
+    return w * np.where(np.arange(x.shape[0]) % 2 == 1, -1.0, 1.0)[:, None]
+
+
 def _checked_arrays(arrays, n, n_elements, n_walls):
     """The arrays as float (``contact_closed`` int8) numpy arrays of the expected shapes, or a
     ValueError naming the array."""
@@ -488,6 +492,8 @@ def _checked_meta(meta, sides):
     missing = [k for k in ("impacts", "stats", "energy", "info") if k not in meta]
     if missing:
         raise ValueError(f"meta is missing {', '.join(repr(k) for k in missing)}.")
+    if not isinstance(meta["info"], dict):
+        raise ValueError("meta['info'] must be a dict (the solver's settings, e.g. method).")
     for key, inner in (("stats", ("steps", "cpu_seconds")), ("energy", ("residual",))):
         if not isinstance(meta[key], dict) or any(k not in meta[key] for k in inner):
             raise ValueError(f"meta[{key!r}] must be a dict with {', '.join(inner)}.")
