@@ -35,15 +35,15 @@ OWN_DEFAULTS = dict(source="fema", time_scale=1.0)
 
 
 def defaults():
-    """The ``[motion]`` table of a plan scenario without one (TOML-shaped; no ``pga``: the
+    """The ``[motion]`` table of a plan scenario without one (TOML-shaped): the default source's
+    keys (a FEMA pair; ``pad``, of an AT2 pair, is :func:`read_at2_pair`'s), no ``pga`` (the
     record's own amplitude times ``scale``)."""
-    from femoat.ground_motions import RecordPair, fema_p695_pair, read_at2_pair
+    from femoat.ground_motions import RecordPair, fema_p695_pair
 
     one_d = motion.OWN_DEFAULTS
     return dict(source=OWN_DEFAULTS["source"], record_set=one_d["record_set"],
                 record_id=one_d["record_id"],
                 normalized=parameter_default(fema_p695_pair, "normalized"),
-                pad=parameter_default(read_at2_pair, "pad"),
                 angle=field_default(RecordPair, "angle"), scale=field_default(RecordPair, "scale"),
                 time_scale=OWN_DEFAULTS["time_scale"],
                 extra_time=motion.defaults()["extra_time"])
@@ -79,7 +79,7 @@ def pair_from_dict(d, base_dir=Path(".")):
                 integer(d, "record_id", default["record_id"], where),
                 normalized=flag(d, "normalized", default["normalized"], where))
     else:
-        pad = flag(d, "pad", default["pad"], where)
+        pad = flag(d, "pad", parameter_default(gmod.read_at2_pair, "pad"), where)
         paths = [_path(d, key, base_dir) for key in ("path_x", "path_y")]
         with naming(f"{where} path_x, path_y (pad = {str(pad).lower()}):"):
             pair = gmod.read_at2_pair(*paths, pad=pad)
