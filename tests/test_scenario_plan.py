@@ -191,16 +191,16 @@ def test_a_plan_scenario_runs_as_the_model_and_pair_built_in_python():
 
 @pytest.mark.parametrize("tables, message", [
     # a negative gap, named by the table it came from (a side's, or the default's)
-    ({"moat": {"+x": {"gap": -1.0}}}, r'^\[moat\."\+x"\] wall \+x: gap = -1.0 must be a '
-                                      r"clearance >= 0 \[in\]"),
+    ({"moat": {"+x": {"gap": -1.0}}},
+     r'^\[moat\."\+x"\] wall \+x: gap = -1.0 must be a clearance >= 0 \[in\]'),
     ({"moat": {"gap": -1.0}}, r"^\[moat\] wall \+x: gap = -1.0 must be a clearance"),
     ({"moat": {"-y": {"friction": -0.2}}}, r'^\[moat\."-y"\] wall -y: friction = -0.2'),
     # an orientation that is not a number
     ({"motion": {**AT2_PAIR, "angle": "north"}},
      r"^\[motion\] angle = 'north': expected a finite number \[deg\], e.g. angle = 0.0"),
     # an unknown side, as a table or in sides
-    ({"moat": {"+z": {"gap": 1.0}}}, r'^\[moat\."\+z"\]: side = \'\+z\' is not a moat wall: '
-                                     r"use one of '\+x', '-x', '\+y', '-y'"),
+    ({"moat": {"+z": {"gap": 1.0}}},
+     r"^\[moat\.\"\+z\"\]: side = '\+z' is not a moat wall: use one of '\+x', '-x', '\+y', '-y'"),
     ({"moat": {"sides": ["+x", "up"]}}, r"^\[moat\] sides: side = 'up' is not a moat wall"),
     ({"moat": {"sides": ["+x"], "-y": {"gap": 2.0}}},
      r'^\[moat\."-y"\]: the moat has no -y wall .* add "-y" to \[moat\] sides'),
@@ -209,8 +209,8 @@ def test_a_plan_scenario_runs_as_the_model_and_pair_built_in_python():
     # the 1D tables and keys in a plan file
     ({"walls": {"gap": 2.0}}, r"^\[walls\]: a plan scenario's walls are \[moat\]"),
     ({"motion": {"source": "at2", "path": str(RINALDI)}}, r"^\[motion\] path: a single record"),
-    ({"motion": {"source": "erzincan"}}, r"^\[motion\] source = 'erzincan': a pair's source is "
-                                         r"'fema' or 'at2'"),
+    ({"motion": {"source": "erzincan"}},
+     r"^\[motion\] source = 'erzincan': a pair's source is 'fema' or 'at2'"),
     ({"motion": {**AT2_PAIR, "pga": 0.5, "scale": 2.0}}, r"^\[motion\] pga and scale: .* not both"),
     ({"motion": {**AT2_PAIR, "record_id": 3}}, r"^\[motion\] record_id: not a key of source"),
     ({"building": {**PLAN, "story_model_y": "wood"}}, r"^\[building\] story_model_y = 'wood'"),

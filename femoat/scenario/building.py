@@ -11,7 +11,8 @@ deteriorating ("imk") story, which has no default capping deformations, gets
 In plan (``plan = true``) the building is this 1D building in both directions
 (:meth:`PlanBuilding.from_building`): the same stories in x and y, the friction pendulum made
 bidirectional (friction coupled in plan), ``isolator_capacity`` measured in plan (|u| of the
-base mat). The y stories may differ: ``story_model_y`` and ``[building.story_y]`` (:data:`PLAN_KEYS`).
+base mat). The y stories may differ: ``story_model_y`` and ``[building.story_y]``
+(:data:`PLAN_KEYS`).
 """
 
 import dataclasses

@@ -19,8 +19,7 @@ from pathlib import Path
 
 from femoat.plan.moat import SIDES, PlanWall, rectangular_moat, wall_side
 from femoat.scenario import walls
-from femoat.scenario.reading import (check_keys, naming, number, parameter_default, subtable,
-                                     text)
+from femoat.scenario.reading import check_keys, naming, number, parameter_default, subtable
 
 SIDE_KEYS = ("preset", "damping", "law", "gap", "friction", "calibrate", "calibrate_v0", "fe")
 """The keys of a side's table, and of ``[moat]`` as the default of every side."""
