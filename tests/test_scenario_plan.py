@@ -280,3 +280,22 @@ def test_the_package_lists_every_plan_key_it_reads():
     # the same tables as the 1D file where they are shared
     for table in ("solver", "collapse", "output"):
         assert scenario.PLAN_KEYS[table] == scenario.KEYS[table]
+
+
+def test_a_finite_element_wall_in_the_moat_is_the_1d_files_wall():
+    # [moat.fe] is read by the 1D reader of [walls.fe]: the same beam wall, its modes chosen from
+    # the contact time of the same 10 kip base mat, on the sides that keep the default
+    from femoat.walls import ModalWall
+
+    fe = {"geometry": str(ROOT / "meshes" / "concrete_wall.toml"), "model": "beam"}
+    s = _plan(moat={"sides": ["+x", "-x"], "fe": fe, "-x": {"gap": 3.0}})
+    one_d = scenario_from_dict({"walls": {"sides": "pos", "fe": fe},
+                                "motion": {"source": "at2", "path": str(RINALDI)}})
+    plus, minus = s.model.wall("+x").wall, s.model.wall("-x").wall
+    assert isinstance(plus, ModalWall) and plus is minus  # built once for both sides
+    # (eigsh starts from a random vector: the modes agree to ~1e-10)
+    np.testing.assert_allclose(plus.modal_stiffnesses, one_d.model.walls[0].wall.modal_stiffnesses,
+                               rtol=1e-6)
+    assert s.wall_label == "concrete FE"
+    with pytest.raises(ValueError, match=r'^\[moat\."\+x"\.fe\] needs geometry'):
+        _plan(moat={"+x": {"fe": {"model": "beam"}}})

@@ -56,26 +56,25 @@ def moat_from_dict(d, base_dir=Path("."), base_mass=None):
         if side not in sides:
             raise ValueError(f'[moat."{side}"]: the moat has no {side} wall (sides = '
                              f'{list(sides)}): add "{side}" to [moat] sides or remove the table.')
-    default = {**default, **{k: v for k, v in d.items() if k != "sides"}}
+    base = {**default, **{k: v for k, v in d.items() if k != "sides"}}  # every side's wall
     shared = walls.contact_from_dict(d, default, where, base_dir, base_mass)
     out = []
     for side in sides:
         own = overrides.get(side, {})
         table = f'[moat."{side}"]'
         check_keys(own, SIDE_KEYS, table)
-        contact = shared
+        contact = shared  # one law and wall for the sides that keep the default's
         if any(k in own for k in _CONTACT_KEYS):
-            contact = walls.contact_from_dict({**default, **own}, default, table, base_dir,
-                                              base_mass)
-        out.append(_wall(side, contact, own, default, table))
+            contact = walls.contact_from_dict({**base, **own}, base, table, base_dir, base_mass)
+        out.append(_wall(side, contact, own, base, table))
     return tuple(out)
 
 
-def _wall(side, contact, own, default, table):
+def _wall(side, contact, own, base, table):
     """One side's PlanWall; a range error names the table its gap or friction came from."""
     law, wall = contact
     origin = {key: table if key in own else "[moat]" for key in ("gap", "friction")}
-    value, example = {**default, **own}, defaults()
+    value, example = {**base, **own}, defaults()
     gap = number(value, "gap", example["gap"], origin["gap"], "in")
     friction = number(value, "friction", example["friction"], origin["friction"])
     with naming(origin["gap"]):
