@@ -46,18 +46,47 @@ Relative paths are relative to the scenario file. The tables and their keys (:da
     first criterion reached). Without the table no criterion is checked.
 ``[output]`` folder (run.npz, impacts.csv, summary.csv, figures); figures.
 
-``examples/my_building.toml`` is a complete file.
+**Plan scenarios** (issue 18, docs/plan.md §8): ``plan = true`` in ``[building]`` makes the
+building a :class:`~femoat.plan.PlanBuilding` (:data:`PLAN_KEYS`), ``[moat]`` replaces
+``[walls]`` and ``[motion]`` is a record pair; ``[solver]``, ``[collapse]`` and ``[output]`` are
+the same.
+
+``[building]`` plan: the building in plan, x and y (no torsion): the table's 1D building in both
+    directions, its friction pendulum bidirectional (friction coupled in plan),
+    isolator_capacity measured in plan; story_model_y and ``[building.story_y]``: the y
+    stories (left out: the x ones; the same model's story_y overrides story key by key).
+``[moat]`` the default wall of the four sides of a rectangular moat: preset, damping, law, gap
+    [in], calibrate, calibrate_v0 [in/s] as in ``[walls]``, friction [-] (Coulomb coefficient of
+    the base mat sliding along a wall in contact, 0: frictionless); sides, the walls the moat
+    has, a list of "+x", "-x", "+y", "-y" (default all four). ``[moat.fe]``: a finite-element
+    wall, keys as ``[walls.fe]``.
+``[moat."+x"]``, ``[moat."-x"]``, ``[moat."+y"]``, ``[moat."-y"]`` optional: one side's wall, the
+    keys of ``[moat]`` but sides, each overriding the default (``[moat."+x".fe]`` replaces
+    ``[moat.fe]``). A side is named by its outward normal (docs/plan.md §2).
+``[motion]`` of a plan scenario, a pair: source "fema" (record_set, record_id: component a along
+    x, b along y; normalized: times FEMA P695's normalization factor NF) | "at2" (path_x,
+    path_y; pad: extend the shorter with zeros); angle [deg], the pair turned in plan from +x
+    toward +y; scale [-], one factor for both components; or pga [g], the target of the
+    geometric mean of the two components' PGAs as recorded (FEMA P695's mean; not with scale);
+    time_scale, extra_time [s] as for one record.
+
+``examples/my_building.toml`` is a complete file, ``examples/plan_building.toml`` a complete plan
+file.
 """
 
-from femoat.scenario.building import building_from_dict
-from femoat.scenario.document import KEYS, Scenario, defaults, load_scenario, scenario_from_dict
+from femoat.scenario.building import building_from_dict, plan_building_from_dict
+from femoat.scenario.document import (KEYS, PLAN_KEYS, Scenario, defaults, load_scenario,
+                                      model_from_dict, scenario_from_dict)
+from femoat.scenario.moat import moat_from_dict
 from femoat.scenario.motion import motion_from_dict
+from femoat.scenario.pair import pair_from_dict
 from femoat.scenario.reading import check_keys, read_toml
 from femoat.scenario.solver import collapse_from_dict, solver_from_dict
 from femoat.scenario.walls import fe_wall_from_dict, walls_from_dict
 
 __all__ = [
-    "KEYS", "Scenario", "building_from_dict", "check_keys", "collapse_from_dict", "defaults",
-    "fe_wall_from_dict", "load_scenario", "motion_from_dict", "read_toml", "scenario_from_dict",
-    "solver_from_dict", "walls_from_dict",
+    "KEYS", "PLAN_KEYS", "Scenario", "building_from_dict", "check_keys", "collapse_from_dict",
+    "defaults", "fe_wall_from_dict", "load_scenario", "moat_from_dict", "model_from_dict",
+    "motion_from_dict", "pair_from_dict", "plan_building_from_dict", "read_toml",
+    "scenario_from_dict", "solver_from_dict", "walls_from_dict",
 ]

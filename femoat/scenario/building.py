@@ -1,11 +1,18 @@
 """``[building]``, ``[building.story]`` and ``[building.isolator]``: a
-:class:`~femoat.structure.building.Building`.
+:class:`~femoat.structure.building.Building`, or with ``plan = true`` a
+:class:`~femoat.plan.PlanBuilding`.
 
 A key left out takes the default of what it sets: :class:`Building`'s fields, the story
 material's (every story gets the same material), :class:`FrictionPendulum`'s. Two defaults are
 the scenario's own: the isolator carries the building's total weight W [kip], and a
 deteriorating ("imk") story, which has no default capping deformations, gets
 :data:`IMK_CAPPING`.
+
+In plan (``plan = true``) the building is this 1D building in both directions
+(:meth:`PlanBuilding.from_building`): the same stories in x and y, the friction pendulum made
+bidirectional (friction coupled in plan), ``isolator_capacity`` measured in plan (|u| of the
+base mat). The y stories may differ: ``story_model_y`` and ``[building.story_y]``
+(:data:`PLAN_KEYS`).
 """
 
 import dataclasses
@@ -17,7 +24,11 @@ from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKB
 
 KEYS = ("base_weight", "floor_weights", "story_model", "story_damping_ratio",
         "story_damping_period", "story", "isolator", "story_heights", "p_delta",
-        "isolator_capacity")
+        "isolator_capacity", "plan")
+PLAN_KEYS = ("story_model_y", "story_y")
+"""Keys only a plan building reads: the y stories' material and its parameters. Left out, the y
+stories are the x ones; ``[building.story_y]`` overrides ``[building.story]`` key by key when
+``story_model_y`` is ``story_model`` (the default), and stands alone for another model."""
 
 STORY_MODELS = {"elastic": Elastic, "bilinear": Bilinear, "imk": IMKBilinear}
 """``story_model`` → the material of every story."""
@@ -40,12 +51,17 @@ def defaults():
     out["story_model"] = _model_name(story)
     out["story"] = {k: v for k, v in dataclasses.asdict(story).items() if v is not None}
     out["isolator"] = field_defaults(FrictionPendulum, leave_out=("W",))
+    out["plan"] = False  # the scenario's own: a 1D building unless the file says plan = true
     return out
 
 
-def _story(model, story):
-    """The material of every story from ``[building.story]``."""
-    where = "[building.story]"
+def is_plan(d):
+    """``plan`` of a ``[building]`` table: whether the scenario is a plan scenario."""
+    return flag(d, "plan", defaults()["plan"], "[building]")
+
+
+def _story(model, story, where="[building.story]"):
+    """The material of every story from ``[building.story]`` (or the table ``where``)."""
     if model == "elastic":  # k (or k0, as for the other models); default: the bilinear k0
         check_keys(story, {"k", "k0"}, where)
         key = "k" if "k" in story or "k0" not in story else "k0"
@@ -58,10 +74,19 @@ def _story(model, story):
 
 
 def building_from_dict(d):
-    """A :class:`Building` from the ``[building]`` table."""
+    """A :class:`Building` from the ``[building]`` table (``plan = true``: use
+    :func:`plan_building_from_dict`)."""
     d = dict(d)
     where = "[building]"
+    given = sorted(set(d) & set(PLAN_KEYS))
+    if given:
+        raise ValueError(f"{where} {', '.join(given)}: the y stories of a plan building; add "
+                         "plan = true to [building] (or remove the key).")
     check_keys(d, KEYS, where)
+    if is_plan(d):
+        raise ValueError(f"{where} plan = true: a building in plan, which the 1D building reader "
+                         "cannot build: read the tables with femoat.scenario.model_from_dict "
+                         "(or plan_building_from_dict), as scenario files are.")
     default = defaults()
     floors = numbers(d, "floor_weights", default["floor_weights"], where, "kip")
     base = number(d, "base_weight", default["base_weight"], where, "kip")
@@ -87,3 +112,33 @@ def building_from_dict(d):
                         story_damping_period=period, story_heights=heights,
                         p_delta=flag(d, "p_delta", default["p_delta"], where),
                         isolator_capacity=float(capacity))
+
+
+def plan_building_from_dict(d):
+    """A :class:`~femoat.plan.PlanBuilding` from a ``[building]`` table: the 1D building of its
+    keys in both directions, with the y stories of ``story_model_y`` and ``[building.story_y]``
+    when given (module docstring)."""
+    from femoat.plan import PlanBuilding
+
+    d = dict(d)
+    where = "[building]"
+    check_keys(d, KEYS + PLAN_KEYS, where)
+    if not is_plan(d):
+        raise ValueError(f"{where} plan = false: plan_building_from_dict reads a plan building "
+                         "(plan = true).")
+    plan = {key: d.pop(key) for key in PLAN_KEYS if key in d}
+    d.pop("plan")
+    one_d = building_from_dict(d)
+    stories_y = None
+    if plan:
+        model = text(d, "story_model", defaults()["story_model"], where)
+        model_y = text(plan, "story_model_y", model, where)
+        if model_y not in STORY_MODELS:
+            raise ValueError(f"{where} story_model_y = {model_y!r}: use {one_of(STORY_MODELS)}.")
+        story_y = subtable(plan, "story_y", where)
+        if model_y == model:  # overrides of the x stories' parameters
+            story_y = {**subtable(d, "story", where), **story_y}
+        material = _story(model_y, story_y, "[building.story_y]")
+        stories_y = tuple(material for _ in one_d.floor_weights)
+    with naming(where):
+        return PlanBuilding.from_building(one_d, stories_y=stories_y)

@@ -1,11 +1,13 @@
 """The whole scenario file: its tables, the :class:`Scenario` they make and the defaults of an
-empty file."""
+empty file. ``[building] plan = true`` makes it a plan scenario (:data:`PLAN_KEYS`): a
+:class:`~femoat.plan.PlanModel` in a ``[moat]`` under a record pair."""
 
 from dataclasses import dataclass
 from pathlib import Path
 
 from femoat.integration.settings import Integrator
-from femoat.scenario import building, motion, solver, walls
+from femoat.plan.moat import SIDES
+from femoat.scenario import building, moat, motion, pair, solver, walls
 from femoat.scenario.reading import check_keys, flag, read_toml, subtable, text
 from femoat.structure.pounding import PoundingModel
 
@@ -22,15 +24,32 @@ KEYS = {
     "solver": solver.KEYS,
     "output": OUTPUT_KEYS,
 }
-"""Every table (dotted for a sub-table with its own reader) and its keys."""
+"""Every table of a 1D scenario (dotted for a sub-table with its own reader) and its keys."""
+
+PLAN_KEYS = {
+    "building": building.KEYS + building.PLAN_KEYS,
+    "collapse": solver.COLLAPSE_KEYS,
+    "moat": moat.KEYS,
+    **{f'moat."{side}"': moat.SIDE_KEYS for side in SIDES},
+    "moat.fe": walls.FE_KEYS,
+    "motion": pair.KEYS,
+    "solver": solver.KEYS,
+    "output": OUTPUT_KEYS,
+}
+"""Every table of a plan scenario (``[building] plan = true``) and its keys."""
+
+TABLES = tuple(sorted({table.split(".")[0] for table in (*KEYS, *PLAN_KEYS)}))
+"""The top-level tables a scenario file may have (1D or plan)."""
 
 
 @dataclass(frozen=True)
 class Scenario:
     """A parsed scenario: the model, the motion, the integrator and output options.
 
-    model : PoundingModel  the building and its walls
-    motion : GroundMotion  scaled and time-scaled
+    model : PoundingModel or PlanModel  the building and its walls (a plan scenario: the
+        building in plan and its moat)
+    motion : GroundMotion or RecordPair  scaled and time-scaled (a plan scenario: a pair,
+        turned by its angle)
     integrator : Integrator
     extra_time : float  [s] free vibration after the record
     collapse : CollapseCriteria or None  (None: no ``[collapse]`` table)
@@ -50,35 +69,78 @@ class Scenario:
     source: dict
     wall_label: str
 
+    @property
+    def plan(self):
+        """Whether this is a plan scenario (a PlanModel under a RecordPair)."""
+        return not isinstance(self.model, PoundingModel)
 
-def defaults():
+
+def defaults(plan=False):
     """The scenario of an empty file, table by table (TOML-shaped: ``scenario_from_dict`` of it
     gives the same scenario). No ``[collapse]``: without the table no criterion is checked (with
-    it, the keys left out take :class:`~femoat.collapse.CollapseCriteria`'s defaults)."""
-    return {"building": building.defaults(), "walls": walls.defaults(),
-            "motion": motion.defaults(), "solver": solver.defaults(),
-            "output": dict(OUTPUT_DEFAULTS)}
+    it, the keys left out take :class:`~femoat.collapse.CollapseCriteria`'s defaults).
+
+    plan : bool  the tables of a plan scenario (``[building] plan = true``): ``[moat]`` instead
+        of ``[walls]``, a record pair's ``[motion]``
+    """
+    out = {"building": building.defaults()}
+    if plan:
+        out["building"]["plan"] = True
+        out.update(moat=moat.defaults(), motion=pair.defaults())
+    else:
+        out.update(walls=walls.defaults(), motion=motion.defaults())
+    return {**out, "solver": solver.defaults(), "output": dict(OUTPUT_DEFAULTS)}
+
+
+def model_from_dict(d, base_dir=Path(".")):
+    """The model of a scenario's (or a suite's) tables: a
+    :class:`~femoat.structure.pounding.PoundingModel` from ``[building]`` and ``[walls]``, or
+    with ``[building] plan = true`` a :class:`~femoat.plan.PlanModel` from ``[building]`` and
+    ``[moat]``."""
+    from femoat.units import G
+
+    table = subtable(d, "building", "scenario")
+    if not building.is_plan(table):
+        if "moat" in d:
+            raise ValueError("[moat]: the walls of a building in plan; add plan = true to "
+                             "[building] (a 1D scenario's walls are [walls]).")
+        built = building.building_from_dict(table)
+        return PoundingModel(built, walls.walls_from_dict(subtable(d, "walls", "scenario"),
+                                                          base_dir, built.base_weight / G))
+    from femoat.plan import PlanModel
+
+    if "walls" in d:
+        raise ValueError("[walls]: a plan scenario's walls are [moat] (a default wall and "
+                         "[moat.\"+x\"] ... per side); rename the table.")
+    built = building.plan_building_from_dict(table)
+    return PlanModel(built, moat.moat_from_dict(subtable(d, "moat", "scenario"), base_dir,
+                                                built.base_weight / G))
 
 
 def scenario_from_dict(d, base_dir=Path(".")):
     """Build a :class:`Scenario` from a parsed TOML document."""
-    check_keys(d, set(KEYS) - {"walls.fe"}, "scenario")
-    from femoat.units import G
-
-    built = building.building_from_dict(subtable(d, "building", "scenario"))
-    walls_d = subtable(d, "walls", "scenario")
-    model = PoundingModel(built, walls.walls_from_dict(walls_d, base_dir,
-                                                       built.base_weight / G))
+    check_keys(d, TABLES, "scenario")
+    model = model_from_dict(d, base_dir)
     motion_d = subtable(d, "motion", "scenario")
-    ground = motion.motion_from_dict(motion_d, base_dir)
+    plan = not isinstance(model, PoundingModel)
+    if plan:
+        ground = pair.pair_from_dict(motion_d, base_dir)
+        label = moat.wall_label(subtable(d, "moat", "scenario"))
+    else:
+        stray = sorted(set(motion_d) & set(pair.KEYS) - set(motion.KEYS))
+        if stray:
+            raise ValueError(f"[motion] {', '.join(stray)}: a record pair's key; add plan = true "
+                             "to [building] for a plan scenario (or remove the key).")
+        ground = motion.motion_from_dict(motion_d, base_dir)
+        walls_d = subtable(d, "walls", "scenario")
+        label = str(walls_d.get("preset", walls.defaults()["preset"])) + \
+            (" FE" if "fe" in walls_d else "")
     extra_time = motion.extra_time_from_dict(motion_d)
     integ = solver.solver_from_dict(subtable(d, "solver", "scenario"))
     out = subtable(d, "output", "scenario")
     check_keys(out, OUTPUT_KEYS, "[output]")
     collapse = solver.collapse_from_dict(subtable(d, "collapse", "scenario")) \
         if "collapse" in d else None
-    label = str(walls_d.get("preset", walls.defaults()["preset"])) + \
-        (" FE" if "fe" in walls_d else "")
     return Scenario(model=model, motion=ground, integrator=integ, extra_time=extra_time,
                     collapse=collapse, wall_label=label,
                     output_folder=Path(text(out, "folder", OUTPUT_DEFAULTS["folder"], "[output]")),

@@ -52,6 +52,22 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
     where = "[walls]"
     check_keys(d, KEYS, where)
     default = defaults()
+    law, wall = contact_from_dict(d, default, where, base_dir, base_mass)
+    gap = number(d, "gap", default["gap"], where, "in")
+    side = text(d, "sides", default["sides"], where)
+    if side not in SIDES:
+        raise ValueError(f"{where} sides = {side!r}: use {one_of(SIDES)}.")
+    with naming(where):
+        return tuple(MoatWall(law, wall, gap, s) for s in SIDES[side])
+
+
+def contact_from_dict(d, default, where, base_dir=Path("."), base_mass=None):
+    """The contact law and the wall behind it of a wall table (``[walls]``, or a plan
+    scenario's ``[moat]`` and its sides): preset, damping, law, calibrate, calibrate_v0 and the
+    optional ``fe`` sub-table (``where`` + ".fe"); a key left out takes ``default``'s.
+
+    Returns (ContactLaw, SdofWall or ModalWall).
+    """
     name, damping = text(d, "preset", default["preset"], where), \
         text(d, "damping", default["damping"], where)
     kind = text(d, "law", default["law"], where)
@@ -63,20 +79,17 @@ def walls_from_dict(d, base_dir=Path("."), base_mass=None):
         from femoat.impact.calibration import calibrate as calibrate_law  # scipy.integrate: 1 s
 
         law = calibrate_law(law, number(d, "calibrate_v0", default["calibrate_v0"], where, "in/s"))
-    gap = number(d, "gap", default["gap"], where, "in")
-    side = text(d, "sides", default["sides"], where)
-    if side not in SIDES:
-        raise ValueError(f"{where} sides = {side!r}: use {one_of(SIDES)}.")
     wall = preset.wall
     if "fe" in d:
         wall = fe_wall_from_dict(subtable(d, "fe", where), law, wall.damping_ratio, base_dir,
-                                 base_mass)
-    with naming(where):
-        return tuple(MoatWall(law, wall, gap, s) for s in SIDES[side])
+                                 base_mass, where=f"{where[:-1]}.fe]")
+    return law, wall
 
 
-def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None):
-    """A :class:`~femoat.walls.ModalWall` from the ``[walls.fe]`` table.
+def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None,
+                      where="[walls.fe]"):
+    """A :class:`~femoat.walls.ModalWall` from the ``[walls.fe]`` table (or the ``fe`` sub-table
+    named ``where``).
 
     law : ContactLaw  the contact law (its stiffness sets the contact time t_c)
     damping_ratio : float  ξ [-] of every mode unless the table gives ``damping_ratio``
@@ -87,10 +100,9 @@ def fe_wall_from_dict(d, law, damping_ratio, base_dir=Path("."), base_mass=None)
     from femoat.walls.modal import contact_time
 
     d = dict(d)
-    where = "[walls.fe]"
     check_keys(d, FE_KEYS, where)
     if "geometry" not in d:
-        raise ValueError("[walls.fe] needs geometry = 'wall.toml' (material, size, fixity, "
+        raise ValueError(f"{where} needs geometry = 'wall.toml' (material, size, fixity, "
                          "impact height; see femoat wall --help).")
     default = fe_defaults()
     geometry = load_geometry(resolve(text(d, "geometry", "wall.toml", where), base_dir))
