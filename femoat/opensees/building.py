@@ -70,7 +70,7 @@ class OpenSeesFailure(RuntimeError):
         self.kind, self.time, self.step = kind, time, step
 
 
-def _story_material(mat):
+def story_material(mat):
     """``(type, *args)`` of the OpenSees twin of a story material."""
     if isinstance(mat, Elastic):
         return ("Elastic", mat.k)
@@ -127,7 +127,7 @@ def opensees_commands(model, motion):
         mat += 1
     beta = b.story_damping_beta
     for k, story in enumerate(b.stories):
-        spring = _story_material(story)
+        spring = story_material(story)
         cmds.append(("uniaxialMaterial", spring[0], mat, *spring[1:]))
         c = beta * story.initial_stiffness
         if c > 0.0:
@@ -155,7 +155,7 @@ def opensees_commands(model, motion):
     return cmds
 
 
-def _analysis_commands(tol, max_iter):
+def analysis_commands(tol, max_iter):
     return [("constraints", "Plain"), ("numberer", "Plain"), ("system", "BandGeneral"),
             ("test", "NormDispIncr", tol, max_iter), ("algorithm", "Newton"),
             ("integrator", "Newmark", 0.5, 0.25), ("analysis", "Transient")]
@@ -178,7 +178,7 @@ def _initial_state(model, motion, v0):
 
 
 @contextlib.contextmanager
-def _captured_stderr(sink):
+def captured_stderr(sink):
     """Collect what OpenSees writes to file descriptor 2 (material banners, warnings) into
     ``sink`` (a list) instead of the terminal."""
     try:
@@ -252,14 +252,14 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
     ns, nw = packed.n_struct, len(model.walls)
     log = []
     try:
-        with _captured_stderr(log):
+        with captured_stderr(log):
             for name, *args in cmds:
                 getattr(ops, name)(*args)
             for node, sg, vi, ai in zip(nodes, signs, v_init, a_init):
                 if vi != 0.0:
                     ops.setNodeVel(node, 1, float(sg * vi), "-commit")
                 ops.setNodeAccel(node, 1, float(sg * ai), "-commit")
-            for name, *args in _analysis_commands(tol, max_iter):
+            for name, *args in analysis_commands(tol, max_iter):
                 getattr(ops, name)(*args)
             hist = _step_loop(ops, nodes, n_steps, dt, ns, nw)
             kinetic = 0.5 * sum(packed.M[i, i] * ops.nodeVel(nd, 1) ** 2
@@ -273,7 +273,7 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
     return _summarise(hist, model, motion, packed, dt, kinetic, cmds)
 
 
-def _read_binary(path, ncol):
+def read_binary(path, ncol):
     """Rows of an OpenSees ``-binary`` recorder file: ncol float64 values then a newline byte."""
     raw = np.fromfile(path, dtype=np.uint8)
     width = 8 * ncol + 1
@@ -298,9 +298,9 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw):
         status = ops.analyze(n_steps, dt)
         ops.remove("recorders")  # flushes and closes the files
         cpu = _time.process_time() - cpu0
-        disp = _read_binary(paths[0], 1 + len(nodes))
-        acc = _read_binary(paths[1], ns)
-        force = -_read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
+        disp = read_binary(paths[0], 1 + len(nodes))
+        acc = read_binary(paths[1], ns)
+        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
     m = min(disp.shape[0], acc.shape[0], force.shape[0])
     x = np.vstack([x0, disp[:m, 1:]])
     acc = np.vstack([a0, acc[:m]])
@@ -384,7 +384,7 @@ def write_opensees_script(model, motion, dt, path, duration=None, tol=1e-10, max
     atomically; it records node displacements and contact forces to ``<path stem>_*.out``."""
     from femoat.atomic import write_text
 
-    cmds = opensees_commands(model, motion) + _analysis_commands(tol, max_iter)
+    cmds = opensees_commands(model, motion) + analysis_commands(tol, max_iter)
     if duration is None:
         duration = motion.duration + 2.0
     n_steps = int(math.ceil(duration / dt - 1e-9))
@@ -392,7 +392,7 @@ def write_opensees_script(model, motion, dt, path, duration=None, tol=1e-10, max
     lines = [f'"""OpenSees twin of a femoat model (units kip, in, s): {motion.name}, '
              f'dt = {dt:g} s, {n_steps} steps. Written by femoat.opensees.building."""',
              "import openseespy.opensees as ops", ""]
-    for name, *args in cmds[:-len(_analysis_commands(tol, max_iter))]:
+    for name, *args in cmds[:-len(analysis_commands(tol, max_iter))]:
         lines.append(f"ops.{name}({', '.join(repr(a) for a in args)})")
     for node, sg, ai in zip(nodes, signs, a_init):
         lines.append(f"ops.setNodeAccel({node}, 1, {float(sg * ai)!r}, '-commit')")
@@ -403,7 +403,7 @@ def write_opensees_script(model, motion, dt, path, duration=None, tol=1e-10, max
         tags = ", ".join(str(_CONTACT_ELE + i) for i in range(len(model.walls)))
         lines.append(f"ops.recorder('Element', '-file', {stem + '_contact.out'!r}, '-time', "
                      f"'-ele', {tags}, 'material', '1', 'stress')")
-    for name, *args in _analysis_commands(tol, max_iter):
+    for name, *args in analysis_commands(tol, max_iter):
         lines.append(f"ops.{name}({', '.join(repr(a) for a in args)})")
     lines += [f"status = ops.analyze({n_steps}, {float(dt)!r})",
               "ops.wipe()", "print('analyze returned', status)", ""]

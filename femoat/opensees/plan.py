@@ -46,10 +46,10 @@ from femoat.ground_motions.pair import RecordPair
 from femoat.opensees.available import import_opensees
 from femoat.opensees.building import (
     OpenSeesFailure,
-    _analysis_commands,
-    _captured_stderr,
-    _read_binary,
-    _story_material,
+    analysis_commands,
+    captured_stderr,
+    read_binary,
+    story_material,
 )
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.plan.bearing import BidirectionalFrictionPendulum
@@ -88,7 +88,7 @@ def _check(model, pair):
 def _story_top(mat, dashpot, geometric, tag):
     """Commands for a story material with its dashpot and P-Delta spring in Parallel; returns
     (commands, tag of the top material, next free tag)."""
-    spring = _story_material(mat)
+    spring = story_material(mat)
     cmds, parts = [("uniaxialMaterial", spring[0], tag, *spring[1:])], [tag]
     for k, c in ((0.0, dashpot), (geometric, 0.0)):
         if k != 0.0 or c != 0.0:
@@ -247,7 +247,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     n_steps = int(math.ceil(duration / dt - 1e-9))
     log, normal = [], None
     try:
-        with _captured_stderr(log):
+        with captured_stderr(log):
             for name, *args in cmds:
                 getattr(ops, name)(*args)
             if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
@@ -256,7 +256,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
                 if vi != 0.0:
                     ops.setNodeVel(node, d, float(sign * vi), "-commit")
                 ops.setNodeAccel(node, d, float(sign * ai), "-commit")
-            for name, *args in _analysis_commands(tol, max_iter):
+            for name, *args in analysis_commands(tol, max_iter):
                 getattr(ops, name)(*args)
             hist = _step_loop(ops, model, n_steps, dt)
     except OpenSeesFailure as exc:
@@ -288,9 +288,9 @@ def _step_loop(ops, model, n_steps, dt):
         status = ops.analyze(n_steps, dt)
         ops.remove("recorders")  # flushes and closes the files
         cpu = _time.process_time() - cpu0
-        disp = _read_binary(paths[0], 1 + 2 * len(nodes))
-        acc = _read_binary(paths[1], 2 * nf)
-        force = -_read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
+        disp = read_binary(paths[0], 1 + 2 * len(nodes))
+        acc = read_binary(paths[1], 2 * nf)
+        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
     m = min(disp.shape[0], acc.shape[0], force.shape[0])
     x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
     acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
