@@ -22,6 +22,17 @@ OpenSees model (written once here)
   (``loadConst``) before the transient. Along one axis the bearing's circular Coulomb rule is
   the 1D twin's ``ElasticPP`` (μW/u_y, u_y) exactly. An Elastic isolator is a ``zeroLength``
   spring in x and y.
+* Velocity-dependent friction (``mu_fast``): the ``VelDependent`` friction model, μ = μ_fast −
+  (μ_fast − μ_slow)·exp(−a·|v|) at the slider's trial velocity, with kInit = μ_slow·W/u_y. How
+  exact: while the bearing slides both resist with μ(|v|)·W along the sliding direction
+  (femoat smooths |v| with ε = ``v_reg``: |Δμ| ≤ (μ_fast − μ_slow)·a·ε); at rest both stick
+  with μ_slow·W/u_y. They differ in the elastic phase after each reversal: femoat's friction is
+  μ(|v|)·W·z with z of fixed yield displacement u_y (its sticking stiffness μ(|v|)·W/u_y),
+  OpenSees keeps kInit and lets only the yield force μ(|v|)·N grow (its yield displacement
+  μ(|v|)·N/kInit). No kInit removes that (it is a different hysteretic rule); measured against
+  femoat's 1D solver along x (paper building, μ 0.04/0.10, a = 1 s/in, far-field record 1 ×2,
+  6 s): peak base displacement 7e-4 apart, the history 4e-3 of the peak, drifts 0.6-1 %
+  (``tests/test_opensees_plan_friction.py``). With constant μ the twin is exact.
 * Story k, floor k−1 → floor k: one ``zeroLength`` with two materials (``-dir 1 2``), each the
   1D twin's story material in ``Parallel`` with its dashpot ``Elastic 0 c`` (c = β·k0) and, with
   P-Delta, ``Elastic −P/h`` (the linear geometric stiffness femoat adds to K).
@@ -31,8 +42,7 @@ OpenSees model (written once here)
 * Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
   Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
 
-No twin (refused with a sentence): modal walls, wall friction (μ_w > 0), velocity-dependent
-bearing friction (``mu_fast``).
+No twin (refused with a sentence): modal walls, wall friction (μ_w > 0).
 """
 
 import math
@@ -69,11 +79,6 @@ def _check(model, pair):
         raise ValueError("model must be a PlanModel (femoat.plan).")
     if not isinstance(pair, RecordPair):
         raise ValueError("pair must be a RecordPair (femoat.ground_motions).")
-    iso = model.building.isolator
-    if isinstance(iso, BidirectionalFrictionPendulum) and iso.mu_fast is not None:
-        raise ValueError("isolator: a velocity-dependent friction coefficient (mu_fast) has no "
-                         "exact OpenSees twin here (Coulomb friction is constant-μ); set "
-                         "mu_fast=None to cross-check.")
     for w in model.walls:
         if not isinstance(w.wall, SdofWall):
             raise ValueError(f"wall {w.side}: the OpenSees twin takes SDOF walls only "
@@ -83,6 +88,14 @@ def _check(model, pair):
             raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no OpenSees twin "
                              "here (the Masroor chain acts along the normal only); set "
                              "friction=0.0 to cross-check.")
+
+
+def _friction_model(iso):
+    """The ``frictionModel`` command of the bearing: ``Coulomb`` μ, or ``VelDependent`` (μ_slow,
+    μ_fast, a) for a velocity-dependent μ (module docstring: how exact it is)."""
+    if iso.mu_fast is None:
+        return ("frictionModel", "Coulomb", _FRICTION, iso.mu)
+    return ("frictionModel", "VelDependent", _FRICTION, iso.mu, iso.mu_fast, iso.a)
 
 
 def _story_top(mat, dashpot, geometric, tag):
@@ -131,7 +144,7 @@ def opensees_plan_commands(model, pair):
                  ("mass", _BASE + k, w / G, w / G, 0.0, 0.0, 0.0, 0.0)]
     mat = 1
     if slider:
-        cmds += [("frictionModel", "Coulomb", _FRICTION, iso.mu),
+        cmds += [_friction_model(iso),
                  ("uniaxialMaterial", "Elastic", mat, _AXIAL_STIFFNESS),
                  ("uniaxialMaterial", "Elastic", mat + 1, iso.W / iso.R),
                  # local x along global z (the bearing's axis), local y along global x: the
@@ -194,8 +207,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     Parameters
     ----------
     model : PlanModel
-        SDOF walls without wall friction; a constant-μ friction pendulum, Elastic or no
-        isolator.
+        SDOF walls without wall friction; a friction pendulum (constant or velocity-dependent
+        μ: module docstring), Elastic or no isolator.
     pair : RecordPair
         The ground motion: its applied components (angle and scale included), x and y.
     dt : float
@@ -213,7 +226,9 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     -------
     dict
         ``time`` [s] (t = n·dt, shape (steps + 1,)); ``base_displacement`` [in] (steps + 1, 2);
-        ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration`` [in/s²] absolute,
+        ``base_velocity`` [in/s] (steps + 1, 2); ``bearing_friction`` [kip] (steps + 1, 2), the
+        slider's friction force (its basic shear forces, without the W/R springs; None without
+        a slider); ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration`` [in/s²] absolute,
         (steps + 1, floors + 1, 2), base mat first; ``wall_displacement`` [in] (away from the
         building), ``contact_force`` [kip] (compression positive) and ``indentation`` [in],
         each (steps + 1, walls); ``walls`` (the sides, in that column order);
@@ -270,28 +285,39 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
 
 def _step_loop(ops, model, n_steps, dt):
     """``analyze(n_steps, dt)`` with binary recorders (as the 1D twin): displacements of every
-    node in x and y, accelerations of the building's nodes, contact forces."""
+    node in x and y, accelerations of the building's nodes, contact forces, the base mat's
+    velocity and, under a slider, its friction force (the basic shear forces)."""
     nf = len(model.building.floor_weights) + 1
     nw = len(model.walls)
+    slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
     struct = [_BASE + k for k in range(nf)]
     nodes = struct + [_WALL_NODE + i for i in range(nw)]
     x0 = np.array([[ops.nodeDisp(nd, d) for d in (1, 2)] for nd in nodes]).reshape(-1)
     a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
+    v0 = np.array([ops.nodeVel(_BASE, d) for d in (1, 2)])
+    q0 = np.array(ops.eleResponse(_BEARING_ELE, "basicForce")[1:3]) if slider else np.zeros(2)
     with tempfile.TemporaryDirectory(prefix="femoat_opensees_plan_") as folder:
-        paths = [os.path.join(folder, name) for name in ("disp.bin", "accel.bin", "force.bin")]
+        paths = [os.path.join(folder, name)
+                 for name in ("disp.bin", "accel.bin", "force.bin", "vel.bin", "slider.bin")]
         ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, 2, "disp")
         ops.recorder("Node", "-binary", paths[1], "-node", *struct, "-dof", 1, 2, "accel")
+        ops.recorder("Node", "-binary", paths[3], "-node", _BASE, "-dof", 1, 2, "vel")
         if nw:
             ops.recorder("Element", "-binary", paths[2], "-ele",
                          *[_CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
+        if slider:
+            ops.recorder("Element", "-binary", paths[4], "-ele", _BEARING_ELE, "basicForce")
         cpu0 = _time.process_time()
         status = ops.analyze(n_steps, dt)
         ops.remove("recorders")  # flushes and closes the files
         cpu = _time.process_time() - cpu0
         disp = read_binary(paths[0], 1 + 2 * len(nodes))
         acc = read_binary(paths[1], 2 * nf)
+        vel = read_binary(paths[3], 2)
         force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
-    m = min(disp.shape[0], acc.shape[0], force.shape[0])
+        # basic shear forces: local y, z are the global x, y (the slider's orientation)
+        shear = read_binary(paths[4], 6)[:, 1:3] if slider else np.zeros((disp.shape[0], 2))
+    m = min(disp.shape[0], acc.shape[0], force.shape[0], vel.shape[0], shear.shape[0])
     x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
     acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
     f = np.vstack([np.zeros(nw), force[:m]])
@@ -305,7 +331,8 @@ def _step_loop(ops, model, n_steps, dt):
             f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
             f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
             "[in]).", "diverged", (m + 1) * dt, m + 1)
-    return dict(x=x, acc=acc, f=f, cpu=cpu)
+    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel[:m]]),
+                friction=np.vstack([q0, shear[:m]]) if slider else None)
 
 
 def _summarise(hist, model, pair, dt, normal, cmds):
@@ -331,7 +358,8 @@ def _summarise(hist, model, pair, dt, normal, cmds):
         impact_force=np.maximum(f, 0.0).max(axis=0, initial=0.0) + 0.0,
         impacts=impacts.astype(int),
     )
-    return dict(time=t, base_displacement=base, floor_displacement=x[:, 1:nf, :],
+    return dict(time=t, base_displacement=base, base_velocity=hist["vel"],
+                bearing_friction=hist["friction"], floor_displacement=x[:, 1:nf, :],
                 acceleration=absacc, wall_displacement=walls, contact_force=f,
                 indentation=indent, walls=[w.side for w in model.walls],
                 bearing_normal_force=normal, peaks=peaks, cpu_seconds=hist["cpu"],
