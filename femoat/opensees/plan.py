@@ -60,15 +60,18 @@ from femoat.opensees.building import (
     captured_stderr,
     read_binary,
     story_material,
+    wall_chain_commands,
+    wall_chain_nodes,
+    wall_chain_transform,
+    wall_load_commands,
 )
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.model import PlanModel
 from femoat.units import G
-from femoat.walls.sdof import SdofWall
 
-_GROUND, _BASE, _WALL_NODE = 1, 2, 100
-_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _WALL_ELE, _CONTACT_ELE = 1, 2, 10, 100, 200
+_GROUND, _BASE = 1, 2  # the 1D twin's tags (its wall chains hang from _GROUND)
+_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _CONTACT_ELE = 1, 2, 10, 200
 _GRAVITY, _FRICTION = 10, 1
 _AXIAL_STIFFNESS = 1.0e6
 """Axial (and rotational) stiffness of the flat slider [kip/in]: it only carries N = W."""
@@ -80,10 +83,6 @@ def _check(model, pair):
     if not isinstance(pair, RecordPair):
         raise ValueError("pair must be a RecordPair (femoat.ground_motions).")
     for w in model.walls:
-        if not isinstance(w.wall, SdofWall):
-            raise ValueError(f"wall {w.side}: the OpenSees twin takes SDOF walls only "
-                             "(SdofWall); reduce a finite-element wall to its first mode to "
-                             "cross-check it.")
         if w.friction != 0.0:
             raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no OpenSees twin "
                              "here (the Masroor chain acts along the normal only); set "
@@ -115,13 +114,23 @@ def _story_top(mat, dashpot, geometric, tag):
 
 
 def _nodes(model):
-    """The twin's (node, OpenSees DOF, sign) of each femoat DOF, in layout order."""
+    """The twin's (node, OpenSees DOF) rows and T (rows × femoat DOFs): the node displacements
+    are T·u for femoat's DOFs u (layout order); a wall's rows are its chain's nodes along its
+    axis (:func:`~femoat.opensees.building.wall_chain_transform`)."""
     rows = []
     for k in range(len(model.building.floor_weights) + 1):
-        rows += [(_BASE + k, 1, 1.0), (_BASE + k, 2, 1.0)]
-    for i, w in enumerate(model.walls):
-        rows.append((_WALL_NODE + i, w.axis + 1, float(w.sign)))
-    return rows
+        rows += [(_BASE + k, 1), (_BASE + k, 2)]
+    ns = len(rows)
+    blocks = [wall_chain_transform(w.wall, w.sign) for w in model.walls]
+    n = ns + sum(len(b) for b in blocks)
+    T = np.zeros((n, n))
+    T[:ns, :ns] = np.eye(ns)
+    col = ns
+    for i, (w, block) in enumerate(zip(model.walls, blocks)):
+        rows += [(node, w.axis + 1) for node in wall_chain_nodes(i, w.wall)]
+        T[col:col + len(block), col:col + len(block)] = block
+        col += len(block)
+    return rows, T
 
 
 def opensees_plan_commands(model, pair):
@@ -170,20 +179,16 @@ def opensees_plan_commands(model, pair):
             tops.append(top)
         cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,
                      "-mat", *tops, "-dir", 1, 2))
+    loads = []
     for i, w in enumerate(model.walls):
-        node, d = _WALL_NODE + i, w.axis + 1
-        masses = [0.0] * 6
-        masses[w.axis] = w.wall.mass
-        fixed = [1] * 6
-        fixed[w.axis] = 0
-        cmds += [("node", node, 0.0, 0.0, 0.0), ("fix", node, *fixed), ("mass", node, *masses),
-                 ("uniaxialMaterial", "Elastic", mat, w.wall.stiffness, w.wall.damping),
-                 ("element", "zeroLength", _WALL_ELE + i, _GROUND, node, "-mat", mat, "-dir", d)]
+        made, node, mat, load = wall_chain_commands(i, w.wall, 3, w.axis, mat)
         contact = opensees_contact_material(w.law, w.gap)
         ni, nj = (_BASE, node) if w.sign > 0 else (node, _BASE)
-        cmds += [("uniaxialMaterial", contact[0], mat + 1, *contact[1:]),
-                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat + 1, "-dir", d)]
-        mat += 2
+        cmds += [*made, ("uniaxialMaterial", contact[0], mat, *contact[1:]),
+                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat,
+                  "-dir", w.axis + 1)]
+        mat += 1
+        loads.append(load)
     if slider:  # N = W on the slider: a static gravity step, then held constant
         cmds += [("timeSeries", "Constant", _GRAVITY), ("pattern", "Plain", _GRAVITY, _GRAVITY),
                  ("load", _BASE, 0.0, 0.0, -iso.W, 0.0, 0.0, 0.0),
@@ -191,11 +196,12 @@ def opensees_plan_commands(model, pair):
                  ("test", "NormDispIncr", 1e-12, 20), ("algorithm", "Newton"),
                  ("integrator", "LoadControl", 1.0), ("analysis", "Static"), ("analyze", 1),
                  ("loadConst", "-time", 0.0), ("wipeAnalysis",)]
-    accel = np.asarray(pair.accel_g) * G
+    accel = [[float(a) for a in row] for row in np.asarray(pair.accel_g) * G]
     for d in (1, 2):
-        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values",
-                  *[float(a) for a in accel[d - 1]]),
+        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values", *accel[d - 1]),
                  ("pattern", "UniformExcitation", d, d, "-accel", d)]
+    for i, (w, load) in enumerate(zip(model.walls, loads)):
+        cmds += wall_load_commands(i, load, accel[w.axis], pair.dt, 3, w.axis)
     return cmds
 
 
@@ -267,10 +273,11 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
                 getattr(ops, name)(*args)
             if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
                 normal = -ops.eleResponse(_BEARING_ELE, "basicForce")[0]
-            for (node, d, sign), vi, ai in zip(_nodes(model), v, a):
+            rows, T = _nodes(model)
+            for (node, d), vi, ai in zip(rows, T @ v, T @ a):
                 if vi != 0.0:
-                    ops.setNodeVel(node, d, float(sign * vi), "-commit")
-                ops.setNodeAccel(node, d, float(sign * ai), "-commit")
+                    ops.setNodeVel(node, d, float(vi), "-commit")
+                ops.setNodeAccel(node, d, float(ai), "-commit")
             for name, *args in analysis_commands(tol, max_iter):
                 getattr(ops, name)(*args)
             hist = _step_loop(ops, model, n_steps, dt)
@@ -291,7 +298,8 @@ def _step_loop(ops, model, n_steps, dt):
     nw = len(model.walls)
     slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
     struct = [_BASE + k for k in range(nf)]
-    nodes = struct + [_WALL_NODE + i for i in range(nw)]
+    nodes = struct + [node for i, w in enumerate(model.walls)
+                      for node in wall_chain_nodes(i, w.wall)]
     x0 = np.array([[ops.nodeDisp(nd, d) for d in (1, 2)] for nd in nodes]).reshape(-1)
     a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
     v0 = np.array([ops.nodeVel(_BASE, d) for d in (1, 2)])
@@ -340,7 +348,9 @@ def _summarise(hist, model, pair, dt, normal, cmds):
     nf = acc.shape[1]
     t = np.arange(x.shape[0]) * dt
     base = x[:, 0, :]
-    walls = np.column_stack([w.sign * x[:, nf + i, w.axis] for i, w in enumerate(model.walls)]) \
+    ends = np.cumsum([len(wall_chain_nodes(i, w.wall)) for i, w in enumerate(model.walls)])
+    walls = np.column_stack([w.sign * x[:, nf + ends[i] - 1, w.axis]  # the impact points
+                             for i, w in enumerate(model.walls)]) \
         if model.walls else np.zeros((t.size, 0))
     indent = np.column_stack([base @ np.array(w.normal) - w.gap - walls[:, i]
                               for i, w in enumerate(model.walls)]) \
