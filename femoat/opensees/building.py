@@ -1,18 +1,32 @@
 """An OpenSees twin of a femoat building run, for cross-checks in the tool engineers know.
 
-:func:`opensees_run` writes a :class:`~femoat.structure.pounding.PoundingModel` with SDOF walls
-as the equivalent openseespy model, runs it at a fixed time step and summarises it with the keys
+:func:`opensees_run` writes a :class:`~femoat.structure.pounding.PoundingModel` (SDOF or modal
+walls) as the equivalent openseespy model, runs it at a fixed time step and summarises it with the keys
 of :attr:`femoat.results.RunResult.peaks`. :func:`opensees_commands` returns the same model as a
 list of openseespy calls; :func:`write_opensees_script` writes them as a standalone script.
 
 OpenSees model (written once here)
 ----------------------------------
 * 1-D, one DOF per node, every displacement relative to the ground (``UniformExcitation``
-  applies −m·a_g to every mass, walls included, as femoat's ``r`` vector does).
-* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; then one node per wall
-  (``_WALL_NODE + 0`` for the first wall of ``model.walls``, ``+ 1`` for the second).
-  A wall node's displacement x is along +x, so femoat's wall coordinate q (positive away from
-  the building) is q = side·x.
+  applies −m·a_g to every lumped mass, as femoat's ``r`` vector does for the building and an
+  SDOF wall).
+* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; then each wall's chain
+  (below): its first node ``_WALL_NODE + i`` for wall i of ``model.walls``, its later nodes
+  ``_MODE_TAG + 100·i + j``. A wall node's displacement x is along +x, so femoat's wall
+  coordinate q (positive away from the building) is q = side·x for an SDOF wall.
+* A wall of N modes (m_i, k_i, c_i, impact shape φ_i, ground participation L_i; an SDOF wall is
+  one mode with φ = 1 and L = m) is a chain of N nodes along the axis (:func:`wall_chain`):
+  with s_i = φ_i·q_i the mode's displacement at the impact point, chain node j moves
+  X_j = side·Σ_{i≤j} s_i, so the last node is the impact point. Mode i's equation divided by
+  φ_i, (m_i/φ_i²)·s̈_i + (c_i/φ_i²)·ṡ_i + (k_i/φ_i²)·s_i = −(L_i/φ_i)·a_g + F, is a spring and
+  dashpot (``zeroLength``, ``Elastic k/φ² c/φ²``) between nodes j−1 and j (the ground for the
+  first) and the mass m/φ² on the relative motion: lumped on the first node, an
+  ``InertiaTruss`` (inerter: force m·(ẍ_j − ẍ_{j−1})) for later modes. The excitation loads
+  only the lumped mass, so a ``Plain`` pattern of the same a_g adds the difference on each
+  chain node (P_j = L_{j+1}/φ_{j+1} − L_j/φ_j, plus m_1/φ_1² on the first; none for an SDOF
+  wall). This is femoat's modal wall exactly (the contact force F acts on every s_i, i.e.
+  φ_i·F on q_i); ``InertiaTruss`` prints its inertance on every step (to the captured
+  stderr).
 * Elements (all ``zeroLength``, ``-dir 1``; strain = u_j − u_i):
     - isolator, ground → base: ``Parallel(Elastic W/R, ElasticPP μW/u_y u_y)`` for a constant-μ
       friction pendulum (its EPP friction spring is ElasticPP exactly); ``Elastic k`` for an
@@ -21,7 +35,7 @@ OpenSees model (written once here)
       ``Bilin …`` (IMKBilinear, :meth:`~femoat.structure.materials.IMKBilinear.opensees_bilin_args`)
       in ``Parallel`` with ``Elastic 0 c``, the story dashpot c = β·k0 of
       :meth:`PoundingModel.pack`;
-    - wall spring, ground → wall: ``Elastic K1 C_imp`` (spring and dashpot);
+    - wall modes: the chain above (an SDOF wall: ``Elastic K1 C_imp``, ground → wall);
     - contact: base → wall for side +1, wall → base for side −1, so that closing the gap makes
       the strain negative on both sides; the gap material is
       :func:`~femoat.opensees.single_impact.opensees_contact_material` (compression
@@ -94,7 +108,8 @@ def _check_model(model):
     if isinstance(iso, FrictionPendulum) and iso.mu_fast is not None:
         raise ValueError(
             "isolator: a velocity-dependent friction coefficient (mu_fast) has no exact OpenSees "
-            "twin here (ElasticPP friction is constant-μ); set mu_fast=None to cross-check.")
+            "twin in 1D (ElasticPP friction is constant-μ; the 3D twin femoat.opensees.plan "
+            "has a close VelDependent one); set mu_fast=None to cross-check.")
     if model.building.p_delta:
         raise ValueError("building: the OpenSees twin has no P-Delta (p_delta=True); build the "
                          "Building with p_delta=False to cross-check it.")
@@ -109,7 +124,7 @@ def opensees_commands(model, motion):
     """The openseespy calls that build ``model`` under ``motion``: a list of
     ``(function name, *args)`` tuples, ending with the analysis set-up (no ``analyze``).
 
-    Raises ValueError for what has no OpenSees twin (modal walls, velocity-dependent friction).
+    Raises ValueError for what has no OpenSees twin (velocity-dependent friction, P-Delta).
     """
     _check_model(model)
     b = model.building
@@ -320,7 +335,8 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
     Parameters
     ----------
     model : PoundingModel
-        Building and SDOF moat walls (constant-μ friction pendulum, Elastic or no isolator).
+        Building and moat walls, SDOF or modal (constant-μ friction pendulum, Elastic or no
+        isolator).
     motion : GroundMotion
         Ground acceleration record.
     dt : float

@@ -12,9 +12,11 @@ OpenSees model (written once here)
   node along its normal only. Displacements are relative to the ground; two
   ``UniformExcitation`` patterns (directions 1 and 2, ``Path`` series of the pair's applied
   components a_x, a_y [in/s²] at its dt, zero after the last sample) load every mass.
-* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; ``_WALL_NODE + i`` for the
-  i-th wall of ``model.walls`` (order +x, −x, +y, −y). A wall node's displacement along its
-  axis is sign·q, q positive away from the building (sign +1 for +x and +y).
+* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; the i-th wall of
+  ``model.walls`` (order +x, −x, +y, −y) is the 1D twin's chain of nodes, the first one 100 + i
+  (:func:`~femoat.opensees.building.wall_chain_nodes`), the last the impact point. An SDOF
+  wall node's displacement along its axis is sign·q, q positive away from the building (sign
+  +1 for +x and +y).
 * Isolator, ground → base mat: the bidirectional friction pendulum is ``flatSliderBearing``
   (``Coulomb`` friction μ, kInit = μW/u_y, a stiff axial material, rotations and torsion
   elastic and held) in parallel with a ``zeroLength`` W/R spring in x and y; the normal force
@@ -36,9 +38,13 @@ OpenSees model (written once here)
 * Story k, floor k−1 → floor k: one ``zeroLength`` with two materials (``-dir 1 2``), each the
   1D twin's story material in ``Parallel`` with its dashpot ``Elastic 0 c`` (c = β·k0) and, with
   P-Delta, ``Elastic −P/h`` (the linear geometric stiffness femoat adds to K).
-* Wall i: spring ``Elastic K1 C_imp`` ground → wall node, and the contact law's twin
+* Wall i: the 1D twin's chain of its modes along the wall's axis
+  (:func:`~femoat.opensees.building.wall_chain_commands`: an SDOF wall is one node with
+  ``Elastic K1 C_imp`` to the ground; a modal wall adds ``InertiaTruss`` inerters and a
+  ``Plain`` ground-load correction of the axis' component), chain node j at j along the axis;
+  and the contact law's twin
   (:func:`~femoat.opensees.single_impact.opensees_contact_material`, compression convention)
-  base → wall for a + side, wall → base for a − side, both along the wall's axis.
+  base → impact node for a + side, impact node → base for a − side, along the wall's axis.
 * Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
   Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
 
@@ -213,7 +219,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     Parameters
     ----------
     model : PlanModel
-        SDOF walls without wall friction; a friction pendulum (constant or velocity-dependent
+        SDOF or modal walls without wall friction; a friction pendulum (constant or velocity-dependent
         μ: module docstring), Elastic or no isolator.
     pair : RecordPair
         The ground motion: its applied components (angle and scale included), x and y.
