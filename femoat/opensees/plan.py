@@ -48,7 +48,26 @@ OpenSees model (written once here)
 * Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
   Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
 
-No twin (refused with a sentence): modal walls, wall friction (μ_w > 0).
+No twin (refused with a sentence): wall friction (μ_w > 0). What OpenSees offers, and why it is
+not femoat's wall friction:
+
+* The only OpenSees elements whose friction takes its normal force from another material are
+  the bearings (``flatSliderBearing``, ``singleFPBearing``, ...): N is their axial material's
+  compressive force. ``zeroLengthContact3D`` and ``zeroLengthImpact3D`` have Coulomb friction
+  too, but their normal force is their own penalty or impact spring, not the five contact laws.
+* A ``flatSliderBearing`` oriented along the wall's normal (basic x the normal, y the wall's
+  tangent), its axial material the contact law's twin and ``Coulomb`` μ_w, carries the normal
+  law faithfully: with μ_w → 0 it reproduces the ``zeroLength`` contact (J, H, E laws: contact
+  forces 1.5e-7 of the peak apart, base 3e-8 in, FEMA far-field pair 1 ×2, every wall hit),
+  and it cuts the ViscoelasticGap's tension as femoat's V does (its uplift branch: no force,
+  no friction, the slip spring reset while the wall is open).
+* Its friction is elastic-plastic in the slip: a sticking spring kInit and a circular yield
+  surface μ_w·N (in the tangent and the vertical, which also couples the base mat's free z).
+  femoat's wall friction is regularised by the slip rate instead (no sticking state). Both are
+  Coulomb's μ_w·F_n against the slip while the base mat slides along the wall; they differ
+  whenever the slip rate passes through zero during a contact, by the two regularisations,
+  which is not a cross-check at 1e-3. A femoat wall friction written as the bearing's rule
+  (a slip spring reset at each contact, yield μ_w·F_n) would make this element its exact twin.
 """
 
 import math
@@ -90,8 +109,9 @@ def _check(model, pair):
         raise ValueError("pair must be a RecordPair (femoat.ground_motions).")
     for w in model.walls:
         if w.friction != 0.0:
-            raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no OpenSees twin "
-                             "here (the Masroor chain acts along the normal only); set "
+            raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no faithful OpenSees "
+                             "twin (OpenSees' contact friction is elastic-plastic in the slip, "
+                             "femoat's is regularised by the slip rate: module docstring); set "
                              "friction=0.0 to cross-check.")
 
 
@@ -219,8 +239,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     Parameters
     ----------
     model : PlanModel
-        SDOF or modal walls without wall friction; a friction pendulum (constant or velocity-dependent
-        μ: module docstring), Elastic or no isolator.
+        SDOF or modal walls without wall friction; a friction pendulum (constant or
+        velocity-dependent μ: module docstring), Elastic or no isolator.
     pair : RecordPair
         The ground motion: its applied components (angle and scale included), x and y.
     dt : float
