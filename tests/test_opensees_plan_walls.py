@@ -11,7 +11,7 @@ from conftest import opensees_or_skip
 from femoat.contact import make_law
 from femoat.ground_motions import GroundMotion, RecordPair
 from femoat.integration import Integrator
-from femoat.opensees import opensees_run
+from femoat.opensees import opensees_commands, opensees_run
 from femoat.opensees.plan import opensees_plan_commands, opensees_plan_run
 from femoat.paper import paper_model, paper_motion
 from femoat.plan import PlanBuilding, PlanModel, PlanWall, rectangular_moat
@@ -146,3 +146,18 @@ def test_a_modal_wall_is_a_chain_with_inerters_and_load_corrections(fe_wall):
     assert [c[1] for c in loads] == [100, 1001, 1002]
     np.testing.assert_allclose([c[2] for c in loads], expected, rtol=1e-12)
     assert ("pattern", "Plain", 100, 100) in cmds
+
+
+def test_a_wall_of_more_than_99_modes_is_refused(fe_wall):
+    # Chain tags are 1000 + 100·wall + mode: a 100th mode would take the next wall's first
+    # tag, so both twins refuse it with the fix (no OpenSees needed).
+    many = ModalWall(*(np.repeat(getattr(fe_wall, name)[:1], 100) for name in (
+        "modal_masses", "modal_stiffnesses", "modal_dampings", "impact_shape",
+        "ground_participation")))
+    law = make_law("H", wall_preset("concrete").contact)
+    gm = paper_motion(quick=True)
+    with pytest.raises(ValueError, match="at most 99"):
+        opensees_plan_commands(PlanModel(walls=(PlanWall(law, many, 3.0, "-y"),)),
+                               RecordPair(gm, gm))
+    with pytest.raises(ValueError, match="at most 99"):
+        opensees_commands(fe_model(many), gm)

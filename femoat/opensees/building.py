@@ -114,8 +114,6 @@ def _check_model(model):
         raise ValueError("building: the OpenSees twin has no P-Delta (p_delta=True); build the "
                          "Building with p_delta=False to cross-check it.")
     for w in model.walls:
-        if len(wall_modes(w.wall)[0]) > 99:
-            raise ValueError("walls: the OpenSees twin takes at most 99 modes per wall.")
         if not isinstance(w.law, ContactLaw):
             raise ValueError("walls: each wall needs a ContactLaw.")
 
@@ -193,6 +191,9 @@ def wall_chain(wall):
 def wall_chain_nodes(i, wall):
     """Node tags of wall i's chain, first mode first; the last is the impact point."""
     n = len(wall_modes(wall)[0])
+    if n > 99:  # the tags _MODE_TAG + 100·i + j would collide
+        raise ValueError(f"walls: a wall of {n} modes; the OpenSees twins take at most 99 "
+                         "(ModalWall.from_fe(..., n_modes=...) chooses fewer).")
     return [_WALL_NODE + i] + [_MODE_TAG + 100 * i + j for j in range(1, n)]
 
 
