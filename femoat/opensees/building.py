@@ -1,9 +1,10 @@
 """An OpenSees twin of a femoat building run, for cross-checks in the tool engineers know.
 
 :func:`opensees_run` writes a :class:`~femoat.structure.pounding.PoundingModel` (SDOF or modal
-walls) as the equivalent openseespy model, runs it at a fixed time step and summarises it with the keys
-of :attr:`femoat.results.RunResult.peaks`. :func:`opensees_commands` returns the same model as a
-list of openseespy calls; :func:`write_opensees_script` writes them as a standalone script.
+walls) as the equivalent openseespy model, runs it at a fixed time step and summarises it with
+the keys of :attr:`femoat.results.RunResult.peaks`. :func:`opensees_commands` returns the same
+model as a list of openseespy calls; :func:`write_opensees_script` writes them as a standalone
+script.
 
 OpenSees model (written once here)
 ----------------------------------
