@@ -261,8 +261,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
         ``base_velocity`` [in/s] (steps + 1, 2); ``bearing_friction`` [kip] (steps + 1, 2), the
         slider's friction force (its basic shear forces, without the W/R springs; None without
         a slider); ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration``
-        [in/s²] absolute, (steps + 1, floors + 1, 2), base mat first; ``wall_displacement`` [in] (away from the
-        building), ``contact_force`` [kip] (compression positive) and ``indentation`` [in],
+        [in/s²] absolute, (steps + 1, floors + 1, 2), base mat first; ``wall_displacement``
+        [in] (the impact points, away from the building), ``contact_force`` [kip] (compression positive) and ``indentation`` [in],
         each (steps + 1, walls); ``walls`` (the sides, in that column order);
         ``bearing_normal_force`` [kip] (N after the gravity step; None without a slider);
         ``peaks``: ``plan_base_displacement`` (largest |u| of the base mat) [in],
