@@ -263,7 +263,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
         a slider); ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration``
         [in/s²] absolute, (steps + 1, floors + 1, 2), base mat first; ``wall_displacement``
         [in] (the impact points, away from the building), ``contact_force`` [kip]
-        (compression positive) and ``indentation`` [in], each (steps + 1, walls); ``walls`` (the sides, in that column order);
+        (compression positive) and ``indentation`` [in], each (steps + 1, walls); ``walls``
+        (the sides, in that column order);
         ``bearing_normal_force`` [kip] (N after the gravity step; None without a slider);
         ``peaks``: ``plan_base_displacement`` (largest |u| of the base mat) [in],
         ``base_displacement`` (x, y) [in], ``drift`` (floors, 2) [in],
