@@ -1,9 +1,9 @@
 """The 3D twin's velocity-dependent bearing friction (OpenSees ``VelDependent`` in
 ``flatSliderBearing``) against femoat's own 1D solver along one axis.
 
-femoat's plan bearing along an axis is the 1D friction pendulum exactly (tests/test_plan_bearing.py),
-so with the y excitation zero the twin's x response is comparable with
-:func:`femoat.run.run` on ``model.along("x")``.
+femoat's plan bearing along an axis is the 1D friction pendulum exactly
+(tests/test_plan_bearing.py), so with the y excitation zero the twin's x response is comparable
+with :func:`femoat.run.run` on ``model.along("x")``.
 """
 
 import numpy as np
