@@ -119,24 +119,12 @@ def test_cli_prints_both_summaries(tmp_path, capsys):
     assert "ops.analyze(" in (tmp_path / "twin.py").read_text()
 
 
-@dataclass(frozen=True)
-class _TwoModeWall:
-    modal_masses: tuple = (1e-3, 1e-3)
-    modal_stiffnesses: tuple = (10.0, 100.0)
-    modal_dampings: tuple = (0.1, 0.1)
-    impact_shape: tuple = (1.0, 0.5)
-    ground_participation: tuple = (1e-3, 1e-3)
-
-
 def test_export_refuses_what_has_no_opensees_twin():
     preset = wall_preset("concrete")
     law = make_law("H", preset.contact)
     rate = Building(isolator=FrictionPendulum(mu=0.05, mu_fast=0.1, a=1.0))
     with pytest.raises(ValueError, match="mu_fast"):
         opensees_commands(PoundingModel(rate), paper_motion(quick=True))
-    modal = PoundingModel(Building(), (MoatWall(law, _TwoModeWall(), 4.0, 1),))
-    with pytest.raises(ValueError, match="SDOF walls"):
-        opensees_commands(modal, paper_motion(quick=True))
 
 
 def test_export_maps_materials_and_dashpots():

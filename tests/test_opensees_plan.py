@@ -19,11 +19,10 @@ from femoat.opensees import opensees_run
 from femoat.opensees.plan import opensees_plan_commands, opensees_plan_run
 from femoat.paper import paper_model, paper_motion
 from femoat.plan import PlanBuilding, PlanModel, PlanWall, rectangular_moat
-from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.structure.building import Building
 from femoat.structure.materials import Elastic
 from femoat.structure.pounding import PoundingModel
-from femoat.walls import ModalWall, wall_preset
+from femoat.walls import wall_preset
 
 
 def first_seconds(gm, seconds, factor=1.0):
@@ -193,12 +192,5 @@ def test_commands_refuse_what_has_no_twin():
     rubbing = (PlanWall(walls[0].law, preset.wall, 4.0, "+x", friction=0.3),)
     with pytest.raises(ValueError, match=r"wall \+x: friction = 0.3"):
         opensees_plan_commands(PlanModel(walls=rubbing), pair)
-    modal = ModalWall.from_sdof(preset.wall)
-    with pytest.raises(ValueError, match=r"wall -y: the OpenSees twin takes SDOF walls"):
-        opensees_plan_commands(PlanModel(walls=(PlanWall(walls[0].law, modal, 4.0, "-y"),)),
-                               pair)
-    fast = PlanBuilding(isolator=BidirectionalFrictionPendulum(mu=0.04, mu_fast=0.1, a=1.0))
-    with pytest.raises(ValueError, match="mu_fast"):
-        opensees_plan_commands(PlanModel(fast), pair)
     with pytest.raises(ValueError, match="RecordPair"):
         opensees_plan_commands(PlanModel(), gm)

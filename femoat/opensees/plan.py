@@ -12,9 +12,11 @@ OpenSees model (written once here)
   node along its normal only. Displacements are relative to the ground; two
   ``UniformExcitation`` patterns (directions 1 and 2, ``Path`` series of the pair's applied
   components a_x, a_y [in/s²] at its dt, zero after the last sample) load every mass.
-* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; ``_WALL_NODE + i`` for the
-  i-th wall of ``model.walls`` (order +x, −x, +y, −y). A wall node's displacement along its
-  axis is sign·q, q positive away from the building (sign +1 for +x and +y).
+* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; the i-th wall of
+  ``model.walls`` (order +x, −x, +y, −y) is the 1D twin's chain of nodes, the first one 100 + i
+  (:func:`~femoat.opensees.building.wall_chain_nodes`), the last the impact point. An SDOF
+  wall node's displacement along its axis is sign·q, q positive away from the building (sign
+  +1 for +x and +y).
 * Isolator, ground → base mat: the bidirectional friction pendulum is ``flatSliderBearing``
   (``Coulomb`` friction μ, kInit = μW/u_y, a stiff axial material, rotations and torsion
   elastic and held) in parallel with a ``zeroLength`` W/R spring in x and y; the normal force
@@ -22,17 +24,50 @@ OpenSees model (written once here)
   (``loadConst``) before the transient. Along one axis the bearing's circular Coulomb rule is
   the 1D twin's ``ElasticPP`` (μW/u_y, u_y) exactly. An Elastic isolator is a ``zeroLength``
   spring in x and y.
+* Velocity-dependent friction (``mu_fast``): the ``VelDependent`` friction model, μ = μ_fast −
+  (μ_fast − μ_slow)·exp(−a·|v|) at the slider's trial velocity, with kInit = μ_slow·W/u_y. How
+  exact: while the bearing slides both resist with μ(|v|)·W along the sliding direction
+  (femoat smooths |v| with ε = ``v_reg``: |Δμ| ≤ (μ_fast − μ_slow)·a·ε); at rest both stick
+  with μ_slow·W/u_y. They differ in the elastic phase after each reversal: femoat's friction is
+  μ(|v|)·W·z with z of fixed yield displacement u_y (its sticking stiffness μ(|v|)·W/u_y),
+  OpenSees keeps kInit and lets only the yield force μ(|v|)·N grow (its yield displacement
+  μ(|v|)·N/kInit). No kInit removes that (it is a different hysteretic rule); measured against
+  femoat's 1D solver along x (paper building, μ 0.04/0.10, a = 1 s/in, far-field record 1 ×2,
+  6 s): peak base displacement 7e-4 apart, the history 4e-3 of the peak, drifts 0.6-1 %
+  (``tests/test_opensees_plan_friction.py``). With constant μ the twin is exact.
 * Story k, floor k−1 → floor k: one ``zeroLength`` with two materials (``-dir 1 2``), each the
   1D twin's story material in ``Parallel`` with its dashpot ``Elastic 0 c`` (c = β·k0) and, with
   P-Delta, ``Elastic −P/h`` (the linear geometric stiffness femoat adds to K).
-* Wall i: spring ``Elastic K1 C_imp`` ground → wall node, and the contact law's twin
+* Wall i: the 1D twin's chain of its modes along the wall's axis
+  (:func:`~femoat.opensees.building.wall_chain_commands`: an SDOF wall is one node with
+  ``Elastic K1 C_imp`` to the ground; a modal wall adds ``InertiaTruss`` inerters and a
+  ``Plain`` ground-load correction of the axis' component), chain node j at j along the axis;
+  and the contact law's twin
   (:func:`~femoat.opensees.single_impact.opensees_contact_material`, compression convention)
-  base → wall for a + side, wall → base for a − side, both along the wall's axis.
+  base → impact node for a + side, impact node → base for a − side, along the wall's axis.
 * Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
   Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
 
-No twin (refused with a sentence): modal walls, wall friction (μ_w > 0), velocity-dependent
-bearing friction (``mu_fast``).
+No twin (refused with a sentence): wall friction (μ_w > 0). What OpenSees offers, and why it is
+not femoat's wall friction:
+
+* The only OpenSees elements whose friction takes its normal force from another material are
+  the bearings (``flatSliderBearing``, ``singleFPBearing``, ...): N is their axial material's
+  compressive force. ``zeroLengthContact3D`` and ``zeroLengthImpact3D`` have Coulomb friction
+  too, but their normal force is their own penalty or impact spring, not the five contact laws.
+* A ``flatSliderBearing`` oriented along the wall's normal (basic x the normal, y the wall's
+  tangent), its axial material the contact law's twin and ``Coulomb`` μ_w, carries the normal
+  law faithfully: with μ_w → 0 it reproduces the ``zeroLength`` contact (J, H, E laws: contact
+  forces 1.5e-7 of the peak apart, base 3e-8 in, FEMA far-field pair 1 ×2, every wall hit),
+  and it cuts the ViscoelasticGap's tension as femoat's V does (its uplift branch: no force,
+  no friction, the slip spring reset while the wall is open).
+* Its friction is elastic-plastic in the slip: a sticking spring kInit and a circular yield
+  surface μ_w·N (in the tangent and the vertical, which also couples the base mat's free z).
+  femoat's wall friction is regularised by the slip rate instead (no sticking state). Both are
+  Coulomb's μ_w·F_n against the slip while the base mat slides along the wall; they differ
+  whenever the slip rate passes through zero during a contact, by the two regularisations,
+  which is not a cross-check at 1e-3. A femoat wall friction written as the bearing's rule
+  (a slip spring reset at each contact, yield μ_w·F_n) would make this element its exact twin.
 """
 
 import math
@@ -46,19 +81,22 @@ from femoat.ground_motions.pair import RecordPair
 from femoat.opensees.available import import_opensees
 from femoat.opensees.building import (
     OpenSeesFailure,
-    _analysis_commands,
-    _captured_stderr,
-    _read_binary,
-    _story_material,
+    analysis_commands,
+    captured_stderr,
+    read_binary,
+    story_material,
+    wall_chain_commands,
+    wall_chain_nodes,
+    wall_chain_transform,
+    wall_load_commands,
 )
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.model import PlanModel
 from femoat.units import G
-from femoat.walls.sdof import SdofWall
 
-_GROUND, _BASE, _WALL_NODE = 1, 2, 100
-_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _WALL_ELE, _CONTACT_ELE = 1, 2, 10, 100, 200
+_GROUND, _BASE = 1, 2  # the 1D twin's tags (its wall chains hang from _GROUND)
+_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _CONTACT_ELE = 1, 2, 10, 200
 _GRAVITY, _FRICTION = 10, 1
 _AXIAL_STIFFNESS = 1.0e6
 """Axial (and rotational) stiffness of the flat slider [kip/in]: it only carries N = W."""
@@ -69,26 +107,26 @@ def _check(model, pair):
         raise ValueError("model must be a PlanModel (femoat.plan).")
     if not isinstance(pair, RecordPair):
         raise ValueError("pair must be a RecordPair (femoat.ground_motions).")
-    iso = model.building.isolator
-    if isinstance(iso, BidirectionalFrictionPendulum) and iso.mu_fast is not None:
-        raise ValueError("isolator: a velocity-dependent friction coefficient (mu_fast) has no "
-                         "exact OpenSees twin here (Coulomb friction is constant-μ); set "
-                         "mu_fast=None to cross-check.")
     for w in model.walls:
-        if not isinstance(w.wall, SdofWall):
-            raise ValueError(f"wall {w.side}: the OpenSees twin takes SDOF walls only "
-                             "(SdofWall); reduce a finite-element wall to its first mode to "
-                             "cross-check it.")
         if w.friction != 0.0:
-            raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no OpenSees twin "
-                             "here (the Masroor chain acts along the normal only); set "
+            raise ValueError(f"wall {w.side}: friction = {w.friction!r} has no faithful OpenSees "
+                             "twin (OpenSees' contact friction is elastic-plastic in the slip, "
+                             "femoat's is regularised by the slip rate: module docstring); set "
                              "friction=0.0 to cross-check.")
+
+
+def _friction_model(iso):
+    """The ``frictionModel`` command of the bearing: ``Coulomb`` μ, or ``VelDependent`` (μ_slow,
+    μ_fast, a) for a velocity-dependent μ (module docstring: how exact it is)."""
+    if iso.mu_fast is None:
+        return ("frictionModel", "Coulomb", _FRICTION, iso.mu)
+    return ("frictionModel", "VelDependent", _FRICTION, iso.mu, iso.mu_fast, iso.a)
 
 
 def _story_top(mat, dashpot, geometric, tag):
     """Commands for a story material with its dashpot and P-Delta spring in Parallel; returns
     (commands, tag of the top material, next free tag)."""
-    spring = _story_material(mat)
+    spring = story_material(mat)
     cmds, parts = [("uniaxialMaterial", spring[0], tag, *spring[1:])], [tag]
     for k, c in ((0.0, dashpot), (geometric, 0.0)):
         if k != 0.0 or c != 0.0:
@@ -102,13 +140,23 @@ def _story_top(mat, dashpot, geometric, tag):
 
 
 def _nodes(model):
-    """The twin's (node, OpenSees DOF, sign) of each femoat DOF, in layout order."""
+    """The twin's (node, OpenSees DOF) rows and T (rows × femoat DOFs): the node displacements
+    are T·u for femoat's DOFs u (layout order); a wall's rows are its chain's nodes along its
+    axis (:func:`~femoat.opensees.building.wall_chain_transform`)."""
     rows = []
     for k in range(len(model.building.floor_weights) + 1):
-        rows += [(_BASE + k, 1, 1.0), (_BASE + k, 2, 1.0)]
-    for i, w in enumerate(model.walls):
-        rows.append((_WALL_NODE + i, w.axis + 1, float(w.sign)))
-    return rows
+        rows += [(_BASE + k, 1), (_BASE + k, 2)]
+    ns = len(rows)
+    blocks = [wall_chain_transform(w.wall, w.sign) for w in model.walls]
+    n = ns + sum(len(b) for b in blocks)
+    T = np.zeros((n, n))
+    T[:ns, :ns] = np.eye(ns)
+    col = ns
+    for i, (w, block) in enumerate(zip(model.walls, blocks)):
+        rows += [(node, w.axis + 1) for node in wall_chain_nodes(i, w.wall)]
+        T[col:col + len(block), col:col + len(block)] = block
+        col += len(block)
+    return rows, T
 
 
 def opensees_plan_commands(model, pair):
@@ -131,7 +179,7 @@ def opensees_plan_commands(model, pair):
                  ("mass", _BASE + k, w / G, w / G, 0.0, 0.0, 0.0, 0.0)]
     mat = 1
     if slider:
-        cmds += [("frictionModel", "Coulomb", _FRICTION, iso.mu),
+        cmds += [_friction_model(iso),
                  ("uniaxialMaterial", "Elastic", mat, _AXIAL_STIFFNESS),
                  ("uniaxialMaterial", "Elastic", mat + 1, iso.W / iso.R),
                  # local x along global z (the bearing's axis), local y along global x: the
@@ -157,20 +205,16 @@ def opensees_plan_commands(model, pair):
             tops.append(top)
         cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,
                      "-mat", *tops, "-dir", 1, 2))
+    loads = []
     for i, w in enumerate(model.walls):
-        node, d = _WALL_NODE + i, w.axis + 1
-        masses = [0.0] * 6
-        masses[w.axis] = w.wall.mass
-        fixed = [1] * 6
-        fixed[w.axis] = 0
-        cmds += [("node", node, 0.0, 0.0, 0.0), ("fix", node, *fixed), ("mass", node, *masses),
-                 ("uniaxialMaterial", "Elastic", mat, w.wall.stiffness, w.wall.damping),
-                 ("element", "zeroLength", _WALL_ELE + i, _GROUND, node, "-mat", mat, "-dir", d)]
+        made, node, mat, load = wall_chain_commands(i, w.wall, 3, w.axis, mat)
         contact = opensees_contact_material(w.law, w.gap)
         ni, nj = (_BASE, node) if w.sign > 0 else (node, _BASE)
-        cmds += [("uniaxialMaterial", contact[0], mat + 1, *contact[1:]),
-                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat + 1, "-dir", d)]
-        mat += 2
+        cmds += [*made, ("uniaxialMaterial", contact[0], mat, *contact[1:]),
+                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat,
+                  "-dir", w.axis + 1)]
+        mat += 1
+        loads.append(load)
     if slider:  # N = W on the slider: a static gravity step, then held constant
         cmds += [("timeSeries", "Constant", _GRAVITY), ("pattern", "Plain", _GRAVITY, _GRAVITY),
                  ("load", _BASE, 0.0, 0.0, -iso.W, 0.0, 0.0, 0.0),
@@ -178,11 +222,12 @@ def opensees_plan_commands(model, pair):
                  ("test", "NormDispIncr", 1e-12, 20), ("algorithm", "Newton"),
                  ("integrator", "LoadControl", 1.0), ("analysis", "Static"), ("analyze", 1),
                  ("loadConst", "-time", 0.0), ("wipeAnalysis",)]
-    accel = np.asarray(pair.accel_g) * G
+    accel = [[float(a) for a in row] for row in np.asarray(pair.accel_g) * G]
     for d in (1, 2):
-        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values",
-                  *[float(a) for a in accel[d - 1]]),
+        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values", *accel[d - 1]),
                  ("pattern", "UniformExcitation", d, d, "-accel", d)]
+    for i, (w, load) in enumerate(zip(model.walls, loads)):
+        cmds += wall_load_commands(i, load, accel[w.axis], pair.dt, 3, w.axis)
     return cmds
 
 
@@ -194,8 +239,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     Parameters
     ----------
     model : PlanModel
-        SDOF walls without wall friction; a constant-μ friction pendulum, Elastic or no
-        isolator.
+        SDOF or modal walls without wall friction; a friction pendulum (constant or
+        velocity-dependent μ: module docstring), Elastic or no isolator.
     pair : RecordPair
         The ground motion: its applied components (angle and scale included), x and y.
     dt : float
@@ -213,10 +258,13 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     -------
     dict
         ``time`` [s] (t = n·dt, shape (steps + 1,)); ``base_displacement`` [in] (steps + 1, 2);
-        ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration`` [in/s²] absolute,
-        (steps + 1, floors + 1, 2), base mat first; ``wall_displacement`` [in] (away from the
-        building), ``contact_force`` [kip] (compression positive) and ``indentation`` [in],
-        each (steps + 1, walls); ``walls`` (the sides, in that column order);
+        ``base_velocity`` [in/s] (steps + 1, 2); ``bearing_friction`` [kip] (steps + 1, 2), the
+        slider's friction force (its basic shear forces, without the W/R springs; None without
+        a slider); ``floor_displacement`` [in] (steps + 1, floors, 2); ``acceleration``
+        [in/s²] absolute, (steps + 1, floors + 1, 2), base mat first; ``wall_displacement``
+        [in] (the impact points, away from the building), ``contact_force`` [kip]
+        (compression positive) and ``indentation`` [in], each (steps + 1, walls); ``walls``
+        (the sides, in that column order);
         ``bearing_normal_force`` [kip] (N after the gravity step; None without a slider);
         ``peaks``: ``plan_base_displacement`` (largest |u| of the base mat) [in],
         ``base_displacement`` (x, y) [in], ``drift`` (floors, 2) [in],
@@ -247,16 +295,17 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     n_steps = int(math.ceil(duration / dt - 1e-9))
     log, normal = [], None
     try:
-        with _captured_stderr(log):
+        with captured_stderr(log):
             for name, *args in cmds:
                 getattr(ops, name)(*args)
             if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
                 normal = -ops.eleResponse(_BEARING_ELE, "basicForce")[0]
-            for (node, d, sign), vi, ai in zip(_nodes(model), v, a):
+            rows, T = _nodes(model)
+            for (node, d), vi, ai in zip(rows, T @ v, T @ a):
                 if vi != 0.0:
-                    ops.setNodeVel(node, d, float(sign * vi), "-commit")
-                ops.setNodeAccel(node, d, float(sign * ai), "-commit")
-            for name, *args in _analysis_commands(tol, max_iter):
+                    ops.setNodeVel(node, d, float(vi), "-commit")
+                ops.setNodeAccel(node, d, float(ai), "-commit")
+            for name, *args in analysis_commands(tol, max_iter):
                 getattr(ops, name)(*args)
             hist = _step_loop(ops, model, n_steps, dt)
     except OpenSeesFailure as exc:
@@ -270,28 +319,40 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
 
 def _step_loop(ops, model, n_steps, dt):
     """``analyze(n_steps, dt)`` with binary recorders (as the 1D twin): displacements of every
-    node in x and y, accelerations of the building's nodes, contact forces."""
+    node in x and y, accelerations of the building's nodes, contact forces, the base mat's
+    velocity and, under a slider, its friction force (the basic shear forces)."""
     nf = len(model.building.floor_weights) + 1
     nw = len(model.walls)
+    slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
     struct = [_BASE + k for k in range(nf)]
-    nodes = struct + [_WALL_NODE + i for i in range(nw)]
+    nodes = struct + [node for i, w in enumerate(model.walls)
+                      for node in wall_chain_nodes(i, w.wall)]
     x0 = np.array([[ops.nodeDisp(nd, d) for d in (1, 2)] for nd in nodes]).reshape(-1)
     a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
+    v0 = np.array([ops.nodeVel(_BASE, d) for d in (1, 2)])
+    q0 = np.array(ops.eleResponse(_BEARING_ELE, "basicForce")[1:3]) if slider else np.zeros(2)
     with tempfile.TemporaryDirectory(prefix="femoat_opensees_plan_") as folder:
-        paths = [os.path.join(folder, name) for name in ("disp.bin", "accel.bin", "force.bin")]
+        paths = [os.path.join(folder, name)
+                 for name in ("disp.bin", "accel.bin", "force.bin", "vel.bin", "slider.bin")]
         ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, 2, "disp")
         ops.recorder("Node", "-binary", paths[1], "-node", *struct, "-dof", 1, 2, "accel")
+        ops.recorder("Node", "-binary", paths[3], "-node", _BASE, "-dof", 1, 2, "vel")
         if nw:
             ops.recorder("Element", "-binary", paths[2], "-ele",
                          *[_CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
+        if slider:
+            ops.recorder("Element", "-binary", paths[4], "-ele", _BEARING_ELE, "basicForce")
         cpu0 = _time.process_time()
         status = ops.analyze(n_steps, dt)
         ops.remove("recorders")  # flushes and closes the files
         cpu = _time.process_time() - cpu0
-        disp = _read_binary(paths[0], 1 + 2 * len(nodes))
-        acc = _read_binary(paths[1], 2 * nf)
-        force = -_read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
-    m = min(disp.shape[0], acc.shape[0], force.shape[0])
+        disp = read_binary(paths[0], 1 + 2 * len(nodes))
+        acc = read_binary(paths[1], 2 * nf)
+        vel = read_binary(paths[3], 2)
+        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
+        # basic shear forces: local y, z are the global x, y (the slider's orientation)
+        shear = read_binary(paths[4], 6)[:, 1:3] if slider else np.zeros((disp.shape[0], 2))
+    m = min(disp.shape[0], acc.shape[0], force.shape[0], vel.shape[0], shear.shape[0])
     x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
     acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
     f = np.vstack([np.zeros(nw), force[:m]])
@@ -305,7 +366,8 @@ def _step_loop(ops, model, n_steps, dt):
             f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
             f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
             "[in]).", "diverged", (m + 1) * dt, m + 1)
-    return dict(x=x, acc=acc, f=f, cpu=cpu)
+    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel[:m]]),
+                friction=np.vstack([q0, shear[:m]]) if slider else None)
 
 
 def _summarise(hist, model, pair, dt, normal, cmds):
@@ -313,7 +375,9 @@ def _summarise(hist, model, pair, dt, normal, cmds):
     nf = acc.shape[1]
     t = np.arange(x.shape[0]) * dt
     base = x[:, 0, :]
-    walls = np.column_stack([w.sign * x[:, nf + i, w.axis] for i, w in enumerate(model.walls)]) \
+    ends = np.cumsum([len(wall_chain_nodes(i, w.wall)) for i, w in enumerate(model.walls)])
+    walls = np.column_stack([w.sign * x[:, nf + ends[i] - 1, w.axis]  # the impact points
+                             for i, w in enumerate(model.walls)]) \
         if model.walls else np.zeros((t.size, 0))
     indent = np.column_stack([base @ np.array(w.normal) - w.gap - walls[:, i]
                               for i, w in enumerate(model.walls)]) \
@@ -331,7 +395,8 @@ def _summarise(hist, model, pair, dt, normal, cmds):
         impact_force=np.maximum(f, 0.0).max(axis=0, initial=0.0) + 0.0,
         impacts=impacts.astype(int),
     )
-    return dict(time=t, base_displacement=base, floor_displacement=x[:, 1:nf, :],
+    return dict(time=t, base_displacement=base, base_velocity=hist["vel"],
+                bearing_friction=hist["friction"], floor_displacement=x[:, 1:nf, :],
                 acceleration=absacc, wall_displacement=walls, contact_force=f,
                 indentation=indent, walls=[w.side for w in model.walls],
                 bearing_normal_force=normal, peaks=peaks, cpu_seconds=hist["cpu"],
