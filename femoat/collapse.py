@@ -205,6 +205,10 @@ def runaway_limits(model, packed):
         elif role.kind == ISOLATOR and math.isfinite(b.isolator_capacity):
             rows.append(Limit("element_deformation", e, RUNAWAY_ISOLATOR * b.isolator_capacity,
                               runaway=True, criterion=IsolatorCapacity.name))
+    if getattr(packed, "bearing_dofs", np.zeros(0)).size and math.isfinite(b.isolator_capacity):
+        # a plan bearing: its displacement in plan (femoat.plan)
+        rows.append(Limit("plan_displacement", 0, RUNAWAY_ISOLATOR * b.isolator_capacity,
+                          runaway=True, criterion=IsolatorCapacity.name))
     return rows
 
 
@@ -233,7 +237,9 @@ def runaway_summary(limits, limit_times, packed):
     if not hits:
         return None
     t, lim = min(hits, key=lambda h: h[0])
-    return dict(time=float(t), element=packed.el_roles[lim.index].name, bound=float(lim.bound),
+    element = ("isolator (in plan)" if lim.quantity == "plan_displacement"
+               else packed.el_names[lim.index])
+    return dict(time=float(t), element=element, bound=float(lim.bound),
                 reason=_RUNAWAY_REASON[lim.criterion])
 
 

@@ -67,7 +67,7 @@ class RunResult:
             info=info or {},
         )
         r = cls(hist.arrays, meta)
-        r.meta["impacts"] = _impact_rows(hist.impacts, meta["contact_names"])
+        r.meta["impacts"] = impact_rows(hist.impacts, meta["contact_names"])
         r.meta["peaks"] = r._peaks(hist.peaks)
         return r
 
@@ -320,7 +320,7 @@ for _c in CHANNELS:
 del _c
 
 
-def _impact_rows(table, contact_names):
+def impact_rows(table, contact_names):
     """The impact table (dicts, by start, ties in contact order) from the solver's episode rows
     (columns :data:`femoat.integration.recording.episodes.IMPACT_FIELDS`)."""
     rows = [dict(side=contact_names[int(c)], start=float(start), duration=float(duration),

@@ -3,6 +3,8 @@
 import functools
 import math
 
+import numpy as np
+
 from femoat.collapse import (
     CollapseCriteria,
     collapse_summary,
@@ -11,8 +13,12 @@ from femoat.collapse import (
 )
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
-from femoat.results import RunResult
+from femoat.ground_motions.pair import RecordPair
+from femoat.plan.model import PlanModel
+from femoat.plan.results import PlanRunResult
+from femoat.results import RunResult, impact_rows
 from femoat.structure.pounding import PoundingModel
+from femoat.units import G
 
 
 @functools.lru_cache(maxsize=64)
@@ -28,10 +34,14 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
 
     Parameters
     ----------
-    model : PoundingModel
-        Building and moat walls.
-    motion : GroundMotion
-        Ground acceleration record (femoat.ground_motions), in g at interval dt [s].
+    model : PoundingModel or PlanModel
+        Building and moat walls: along one axis, or in plan (:mod:`femoat.plan`: the building
+        in x and y, the coupled friction pendulum, a rectangular moat).
+    motion : GroundMotion or RecordPair
+        Ground acceleration record (femoat.ground_motions), in g at interval dt [s]; for a
+        PlanModel a :class:`~femoat.ground_motions.pair.RecordPair` (two components, applied
+        together, turned by its angle). A plan run returns a
+        :class:`~femoat.plan.results.PlanRunResult`.
     integrator : Integrator or None
         Integration settings (default: Newmark average acceleration, rtol = 1e-5: every peak within 1e-3).
     extra_time : float
@@ -63,8 +73,12 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     the bound and the time. A record that would outgrow ``integrator.record_budget`` raises
     :class:`~femoat.integration.solve.RecordBudgetError`.
     """
+    if isinstance(model, PlanModel):
+        return _run_plan(model, motion, integrator, extra_time, duration, u0, v0, progress,
+                         channels, backend, collapse, history)
     if not isinstance(model, PoundingModel):
-        raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
+        raise ValueError("model must be a PoundingModel (femoat.structure.pounding) or a "
+                         "PlanModel (femoat.plan).")
     if duration is None:
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
@@ -95,3 +109,40 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         result.meta["collapse"] = collapse_summary(limits, hist.limit_times,
                                                    hist.stopped_at_limit, collapse.names)
     return result
+
+
+def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels, backend,
+              collapse, history):
+    """:func:`run` for a :class:`~femoat.plan.PlanModel` under a record pair."""
+    if not isinstance(pair, RecordPair):
+        raise ValueError("a PlanModel runs under a RecordPair (femoat.ground_motions.pair: "
+                         "fema_p695_pair, read_at2_pair or RecordPair(x, y, angle)); for one "
+                         "component, RecordPair(x, zeros) or the 1D model model.along('x').")
+    if collapse is not None:
+        raise ValueError("collapse criteria are not yet available for plan models (every plan "
+                         "run still ends at the runaway bounds: a story drift of one story "
+                         "height, 10 x the isolator capacity in plan); run without collapse=.")
+    if not history:
+        raise ValueError("a plan run keeps its history (its peaks are read from it): "
+                         "run with history=True.")
+    if duration is None:
+        if not (math.isfinite(extra_time) and extra_time >= 0):
+            raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
+        duration = pair.duration + extra_time
+    integ = integrator or Integrator()
+    packed = packed_model(model)
+    kw = {} if channels is None else dict(channels=tuple(channels))
+    limits = runaway_limits(model, packed)
+    hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
+                 u0=u0, v0=v0, progress=progress, backend=backend, limits=limits, **kw)
+    arrays = dict(hist.arrays)
+    arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))
+    info = dict(motion=pair.name, angle=float(pair.angle), scale=float(pair.scale),
+                motion_dt=float(pair.dt), duration=float(duration), method=integ.method,
+                rtol=integ.rtol, alpha=integ.alpha, laws=[w.law.kind for w in model.walls])
+    meta = dict(impacts=impact_rows(hist.impacts, packed.c_names), stats=hist.stats,
+                energy=hist.energy, info=info)
+    runaway = runaway_summary(limits, hist.limit_times, packed)
+    if runaway is not None:
+        meta["runaway"] = runaway
+    return PlanRunResult.from_arrays(arrays, packed, meta)

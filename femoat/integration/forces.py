@@ -118,6 +118,23 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
         for i in range(nd, n):
             KT[i, i] = K[i, i]
             CT[i, i] = C[i, i]
+    # the plan bearings first: the isolator is the first element of a 1D model (the same sums)
+    for e in range(b_f.shape[0]):
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        kb, cb = k22[0], k22[1]
+        plan_friction_pendulum_trial(model.b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], b_f[e],
+                                     kb, cb)
+        F[ix] += b_f[e, 0]
+        F[iy] += b_f[e, 1]
+        if want_tangent:
+            KT[ix, ix] += kb[0, 0]
+            KT[ix, iy] += kb[0, 1]
+            KT[iy, ix] += kb[1, 0]
+            KT[iy, iy] += kb[1, 1]
+            CT[ix, ix] += cb[0, 0]
+            CT[ix, iy] += cb[0, 1]
+            CT[iy, ix] += cb[1, 0]
+            CT[iy, iy] += cb[1, 1]
     for e in range(el_code.size):
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -138,22 +155,6 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
                 CT[j, j] += cf
                 CT[i, j] -= cf
                 CT[j, i] -= cf
-    for e in range(b_f.shape[0]):
-        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        kb, cb = k22[0], k22[1]
-        plan_friction_pendulum_trial(model.b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], b_f[e],
-                                     kb, cb)
-        F[ix] += b_f[e, 0]
-        F[iy] += b_f[e, 1]
-        if want_tangent:
-            KT[ix, ix] += kb[0, 0]
-            KT[ix, iy] += kb[0, 1]
-            KT[iy, ix] += kb[1, 0]
-            KT[iy, iy] += kb[1, 1]
-            CT[ix, ix] += cb[0, 0]
-            CT[ix, iy] += cb[0, 1]
-            CT[iy, ix] += cb[1, 0]
-            CT[iy, iy] += cb[1, 1]
     for c in range(c_code.size):
         b = c_B[c]
         d = -c_gap[c]

@@ -107,8 +107,8 @@ def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
         k[0, 1] = -g * zx * zy
         k[1, 0] = k[0, 1]
         k[1, 1] = k_r + g * (1.0 - zy * zy)
-    else:  # sticking: μW/u_y in every direction
-        k[0, 0] = k_r + mu * w / p[_UY]
+    else:  # sticking: μW/u_y in every direction (as the 1D bearing rounds it: μW·(1/u_y))
+        k[0, 0] = k_r + mu * w * (1.0 / p[_UY])
         k[0, 1] = 0.0
         k[1, 0] = 0.0
         k[1, 1] = k[0, 0]
