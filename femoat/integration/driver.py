@@ -132,7 +132,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
                 h = declare_event(c_min, t, hh, h, model, state, settings, work, rec)
             continue
 
-        toggled, v_close = accept(ag1, landing, explicit_now, model, state, settings, work)
+        toggled, v_close = accept(hh, ag1, landing, explicit_now, model, state, settings, work)
         t = t1
         stalls = 0
         cut_short = shortened or hh < h_asked * (1.0 - 1e-12)

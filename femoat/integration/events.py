@@ -35,7 +35,7 @@ def restart(model, state, work):
     n = u.size
     _internal_force(u, v, model, state.el_S, state.c_H, state.c_closed, work.ef, work.ed,
                     state.c_f, state.c_d, Fn, work.KT, work.CT, False, n, state.b_S, state.b_f,
-                    state.c_ft, work.k22)
+                    state.c_ft, work.k22, u, v, 0.0)
     for i in range(n):
         w_b[i] = ground_load(r, i, ag_now) - Fn[i]
         for j in range(n):

@@ -9,7 +9,7 @@ import numpy as np
 
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_force
-from femoat.plan.bearing import plan_friction_pendulum_trial
+from femoat.plan.bearing import plan_friction_pendulum_path_trial
 from femoat.structure.materials.kernels import material_trial
 
 
@@ -86,14 +86,16 @@ def _solve_dense(A, b, n):
 
 @njit(cache=True, inline="always")
 def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, KT, CT,
-                    want_tangent, nd, b_S, b_f, c_ft, k22):
+                    want_tangent, nd, b_S, b_f, c_ft, k22, u0, v0, tau):
     """F = C·v + K·u + element, plan-bearing and contact forces at (u, v); tangents KT, CT if
     asked.
 
     Element states ``el_S``, bearing states ``b_S`` and contact histories ``c_H`` are the
     committed ones (read only); the element forces and deformations, the bearings' forces
     (x, y), the contact forces and indentations and the walls' friction forces are written to
-    ``el_f``, ``el_d``, ``b_f``, ``c_f``, ``c_d``, ``c_ft``; ``k22`` is (2, 2, 2) scratch. Rows and columns from ``nd`` on are treated as diagonal
+    ``el_f``, ``el_d``, ``b_f``, ``c_f``, ``c_d``, ``c_ft``; ``k22`` is (2, 2, 2) scratch. A plan
+    bearing follows the path of the step from the committed state (``u0``, ``v0`` at its start,
+    duration ``tau`` [s]; 0 at the committed state itself). Rows and columns from ``nd`` on are treated as diagonal
     (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
     Contacts act only while their episode is open (between a located closure and the located
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
@@ -122,8 +124,8 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
     for e in range(b_f.shape[0]):
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
         kb, cb = k22[0], k22[1]
-        plan_friction_pendulum_trial(model.b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], b_f[e],
-                                     kb, cb)
+        plan_friction_pendulum_path_trial(model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
+                                          u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
         F[ix] += b_f[e, 0]
         F[iy] += b_f[e, 1]
         if want_tangent:
@@ -220,4 +222,5 @@ def internal_force(model, state, work):
     and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
     _internal_force(state.u, state.v, model, state.el_S, state.c_H, state.c_closed, state.el_f,
                     state.el_d, state.c_f, state.c_d, state.F, work.KT, work.CT, False,
-                    state.u.size, state.b_S, state.b_f, state.c_ft, work.k22)
+                    state.u.size, state.b_S, state.b_f, state.c_ft, work.k22, state.u, state.v,
+                    0.0)

@@ -75,6 +75,113 @@ def _z(p, s, ux, uy):
     return zx, zy, norm
 
 
+MAX_SUBSTEPS = 256
+"""The most pieces a step's path is cut into by :func:`_path_z` (each at most u_y long)."""
+
+
+@njit(cache=True, inline="always")
+def _hermite(th, h, x0, v0, x1, v1):
+    """The cubic Hermite interpolant of a path of duration ``h`` at fraction ``th``."""
+    t2 = th * th
+    t3 = t2 * th
+    return ((2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * h * v0
+            + (-2 * t3 + 3 * t2) * x1 + (t3 - t2) * h * v1)
+
+
+@njit(cache=True, inline="always")
+def _straight(zx, zy, dx, dy, u_y):
+    """(z_x, z_y, |z_trial|): the exact hysteresis along a straight piece (dx, dy) [in] from z.
+
+    The rule's continuous form: ż = u̇/u_y inside the disk (sticking); on its rim, moving
+    outwards (z·u̇ > 0), ż = (u̇ − (z·u̇)·z)/u_y (sliding). Along a straight piece of direction
+    d the sticking part is a straight line in z up to the rim (|z + σ·d| = 1, σ ≥ 0 the root
+    of σ² + 2(z·d)σ + |z|² − 1 = 0); then the angle φ from d to z obeys dφ/ds = −sin φ/u_y, so
+    tan(φ/2) decays as exp(−s/u_y). |z_trial| is the single return's, |z + piece/u_y|, for the
+    tangent."""
+    length = np.sqrt(dx * dx + dy * dy)
+    tx, ty = zx + dx / u_y, zy + dy / u_y
+    trial = np.sqrt(tx * tx + ty * ty)
+    if length == 0.0:
+        return zx, zy, trial
+    ex, ey = dx / length, dy / length
+    b = zx * ex + zy * ey
+    c = zx * zx + zy * zy - 1.0
+    sigma = -b + np.sqrt(max(b * b - c, 0.0))  # [-] z-travel to the rim
+    if sigma * u_y >= length:
+        return tx, ty, trial  # sticking all along
+    zx, zy = zx + sigma * ex, zy + sigma * ey
+    rest = length - sigma * u_y
+    cos0 = zx * ex + zy * ey
+    sin0 = ex * zy - ey * zx
+    t = sin0 / (1.0 + cos0) * np.exp(-rest / u_y) if cos0 > -1.0 else 0.0
+    cos1 = (1.0 - t * t) / (1.0 + t * t)
+    sin1 = 2.0 * t / (1.0 + t * t)
+    return cos1 * ex - sin1 * ey, cos1 * ey + sin1 * ex, max(trial, 1.0 + 1e-15)
+
+
+@njit(cache=True)
+def _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
+    """(z_x, z_y, |z_trial|) at the end (ux, uy) of a step of duration ``tau`` [s] that starts
+    at the committed state with velocity (v0x, v0y) and ends with (vx, vy) [in/s].
+
+    A single radial return from the committed state follows the chord of the step: on a curved
+    path its friction direction lags the sliding direction by half the step's turn, an error of
+    first order in the step, and is a backward-Euler step of the rule's continuous form. Here
+    the step's cubic Hermite path is cut into straight pieces at most u_y long (at most
+    MAX_SUBSTEPS), each integrated exactly (:func:`_straight`): z then follows the path as the
+    continuous rule does. Motion along a line through z (the path straight and parallel to
+    z, e.g. along one axis) is one radial return, which is exact there: :func:`_z`, the 1D
+    bearing's bits."""
+    dx, dy = ux - s[_UCX], uy - s[_UCY]
+    cross = abs(dx * v0y - dy * v0x) + abs(dx * vy - dy * vx) + abs(dx * s[_ZCY] - dy * s[_ZCX])
+    length = np.sqrt(dx * dx + dy * dy)
+    if tau <= 0.0 or cross == 0.0 or length == 0.0:
+        return _z(p, s, ux, uy)
+    pieces = min(MAX_SUBSTEPS, max(1, int(np.ceil(length / p[_UY]))))
+    zx, zy = s[_ZCX], s[_ZCY]
+    px, py = s[_UCX], s[_UCY]
+    norm = 0.0
+    for k in range(1, pieces + 1):
+        if k == pieces:
+            qx, qy = ux, uy
+        else:
+            th = k / pieces
+            qx = _hermite(th, tau, u0x, v0x, ux, vx)
+            qy = _hermite(th, tau, u0y, v0y, uy, vy)
+        zx, zy, norm = _straight(zx, zy, qx - px, qy - py, p[_UY])
+        px, py = qx, qy
+    return zx, zy, norm
+
+
+@njit(cache=True)
+def plan_friction_pendulum_path_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
+    """:func:`plan_friction_pendulum_trial` at the end of a step of duration ``tau`` [s] from
+    the committed state (start velocity (v0x, v0y) [in/s]), the friction direction followed
+    along the step's path (:func:`_path_z`). The tangent is the last return's (Newton's and
+    the error estimate's; the force is exact to the path)."""
+    w = p[_W]
+    k_r = w / p[_R]
+    zx, zy, norm = _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
+    mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
+    f[0] = k_r * ux + mu * w * zx
+    f[1] = k_r * uy + mu * w * zy
+    if norm > 1.0:  # sliding: the softer of the last piece's and the chord's tangent
+        norm = max(norm, _z(p, s, ux, uy)[2])
+    _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c)
+
+
+@njit(cache=True)
+def plan_friction_pendulum_path_commit(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
+    """:func:`plan_friction_pendulum_commit` along the step's path (:func:`_path_z`)."""
+    zx, zy, _ = _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
+    s[_UCX] = ux
+    s[_UCY] = uy
+    s[_ZCX] = zx
+    s[_ZCY] = zy
+    s[_VCX] = vx
+    s[_VCY] = vy
+
+
 @njit(cache=True)
 def plan_friction_pendulum_z_trial(p, s, ux, uy):
     """|z_trial| [-] at the trial (ux, uy) [in] from the committed state ``s``: above 1 the
@@ -101,6 +208,13 @@ def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
     mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
     f[0] = k_r * ux + mu * w * zx
     f[1] = k_r * uy + mu * w * zy
+    _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c)
+
+
+@njit(cache=True, inline="always")
+def _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c):
+    """∂f/∂u into ``k``, ∂f/∂v into ``c`` (module docstring) at z after a return whose trial
+    had length ``norm``."""
     if norm > 1.0:  # sliding: μW·(I − z zᵀ)/(u_y·|z_trial|)
         g = mu * w / (p[_UY] * norm)
         k[0, 0] = k_r + g * (1.0 - zx * zx)

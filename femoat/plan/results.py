@@ -221,8 +221,12 @@ class PlanRunResult:
         force = np.asarray(result["contact_force"], dtype=float)
         rate = v @ packed.c_B.T
         empty = np.zeros((m, 0))
-        reference = RunResult(t, empty, empty, empty, ag[:, 0], empty, empty, force,
-                              indentation, rate, closed, meta={"contact_names": sides})
+        reference = RunResult(dict(time=t, displacement=empty, velocity=empty,
+                                   acceleration=empty, ground_acceleration=ag[:, 0],
+                                   element_force=empty, element_deformation=empty,
+                                   contact_force=force, indentation=indentation,
+                                   indentation_rate=rate, contact_closed=closed),
+                              meta={"contact_names": sides})
         arrays = dict(time=t, displacement=u, velocity=v, acceleration=a, ground_acceleration=ag,
                       element_force=empty, element_deformation=el_top - el_bottom,
                       bearing_force=empty, contact_force=force, indentation=indentation,

@@ -220,7 +220,8 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
             work.v[i] = v0[i] + hh * sv
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
                         work.ed, work.cf, work.cd, work.F, work.KT, work.CT,
-                        s == N_STAGES - 1, nb, state.b_S, work.bf, work.cft, work.k22)
+                        s == N_STAGES - 1, nb, state.b_S, work.bf, work.cft, work.k22, u0, v0,
+                        DP_C[s] * hh)
         ag = work.ag_stage
         for k in range(ag.size):
             ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])

@@ -218,7 +218,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         nd = _dense_size(n_coupled, any_closed, model, work)
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
                         work.ed, work.cf, work.cd, work.F, work.KT, work.CT, True, nd,
-                        state.b_S, work.bf, work.cft, work.k22)
+                        state.b_S, work.bf, work.cft, work.k22, state.u, state.v, hh)
         _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work)
         if it > 1 and _residual_is_small(bh2, ntol, amax, scale, work):
             converged = True
@@ -238,7 +238,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
                         work.ed, work.cf, work.cd, work.F, work.KT, work.CT, False, nd,
-                        state.b_S, work.bf, work.cft, work.k22)
+                        state.b_S, work.bf, work.cft, work.k22, state.u, state.v, hh)
     return converged
 
 
