@@ -104,9 +104,11 @@ def test_diagonal_excitation_in_a_square_moat_hits_two_walls_at_once():
         for ia, ib in zip(hits[a], hits[b]):
             assert ia["start"] == pytest.approx(ib["start"], abs=1e-9)
             assert ia["peak_force"] == pytest.approx(ib["peak_force"], rel=1e-8)
-    # the corner: both walls carry force on the same samples
+    # the corner: both walls carry force on the same samples (a force that has fallen to
+    # round-off at an episode's end may be 0 on one wall and 1e-13 kip on the other)
     f = r.contact_force
-    np.testing.assert_array_equal(f[:, 0] > 0, f[:, 2] > 0)
+    tiny = 1e-9 * f.max()
+    np.testing.assert_array_equal(f[:, 0] > tiny, f[:, 2] > tiny)
     assert np.any((f[:, 0] > 0) & (f[:, 2] > 0))
 
 

@@ -173,7 +173,6 @@ def test_the_example_plan_file_is_the_paper_building_at_the_mce():
     assert s.motion.dt == 0.005 and s.motion.angle == 0.0  # quarter-scale time axis
 
 
-@pytest.mark.xfail(strict=True, reason="plan solver not merged yet")
 def test_a_plan_scenario_runs_as_the_model_and_pair_built_in_python():
     from femoat.run import run
 

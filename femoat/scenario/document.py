@@ -6,7 +6,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from femoat.integration.settings import Integrator
+from femoat.plan.model import PlanModel
 from femoat.plan.moat import SIDES
+from femoat.run import PLAN_METHOD
 from femoat.scenario import building, moat, motion, pair, solver, walls
 from femoat.scenario.reading import check_keys, flag, read_toml, subtable, text
 from femoat.structure.pounding import PoundingModel
@@ -107,8 +109,6 @@ def model_from_dict(d, base_dir=Path(".")):
         built = building.building_from_dict(table)
         return PoundingModel(built, walls.walls_from_dict(subtable(d, "walls", "scenario"),
                                                           base_dir, built.base_weight / G))
-    from femoat.plan import PlanModel
-
     if "walls" in d:
         raise ValueError("[walls]: a plan scenario's walls are [moat] (a default wall and "
                          "[moat.\"+x\"] ... per side); rename the table.")
@@ -136,7 +136,10 @@ def scenario_from_dict(d, base_dir=Path(".")):
         label = str(walls_d.get("preset", walls.defaults()["preset"])) + \
             (" FE" if "fe" in walls_d else "")
     extra_time = motion.extra_time_from_dict(motion_d)
-    integ = solver.solver_from_dict(subtable(d, "solver", "scenario"))
+    solver_d = dict(subtable(d, "solver", "scenario"))
+    if isinstance(model, PlanModel):  # a plan run's own default method (femoat.run)
+        solver_d.setdefault("method", PLAN_METHOD)
+    integ = solver.solver_from_dict(solver_d)
     out = subtable(d, "output", "scenario")
     check_keys(out, OUTPUT_KEYS, "[output]")
     collapse = solver.collapse_from_dict(subtable(d, "collapse", "scenario")) \
