@@ -66,15 +66,19 @@ class DriftRatio:
 @dataclass(frozen=True)
 class IsolatorCapacity:
     """The isolator: |displacement| above the building's ``isolator_capacity`` [in] (none when
-    that is infinite)."""
+    that is infinite); a plan friction pendulum's displacement in plan √(u_x² + u_y²)."""
 
     name = "isolator"
 
     def limits(self, model, packed):
         capacity = model.building.isolator_capacity
-        return [Limit("element_deformation", e, capacity, criterion=self.name)
-                for e, role in enumerate(packed.el_roles)
-                if role.kind == ISOLATOR and math.isfinite(capacity)]
+        if not math.isfinite(capacity):
+            return []
+        rows = [Limit("element_deformation", e, capacity, criterion=self.name)
+                for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
+        if getattr(packed, "bearing_dofs", np.zeros(0)).size:  # in plan: its plan displacement
+            rows.append(Limit("plan_displacement", 0, capacity, criterion=self.name))
+        return rows
 
 
 @dataclass(frozen=True)

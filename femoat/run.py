@@ -124,10 +124,6 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
         raise ValueError("a PlanModel runs under a RecordPair (femoat.ground_motions.pair: "
                          "fema_p695_pair, read_at2_pair or RecordPair(x, y, angle)); for one "
                          "component, RecordPair(x, zeros) or the 1D model model.along('x').")
-    if collapse is not None:
-        raise ValueError("collapse criteria are not yet available for plan models (every plan "
-                         "run still ends at the runaway bounds: a story drift of one story "
-                         "height, 10 x the isolator capacity in plan); run without collapse=.")
     if not history:
         raise ValueError("a plan run keeps its history (its peaks are read from it): "
                          "run with history=True.")
@@ -139,6 +135,11 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits = runaway_limits(model, packed)
+    if collapse is not None:
+        if not isinstance(collapse, CollapseCriteria):
+            raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
+        limits = collapse.limits(model, packed) + limits
+        kw.update(stop_at_limit=collapse.stop)
     hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
                  u0=u0, v0=v0, progress=progress, backend=backend, limits=limits, **kw)
     arrays = dict(hist.arrays)
@@ -151,4 +152,7 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     runaway = runaway_summary(limits, hist.limit_times, packed)
     if runaway is not None:
         meta["runaway"] = runaway
+    if collapse is not None:
+        meta["collapse"] = collapse_summary(limits, hist.limit_times, hist.stopped_at_limit,
+                                            collapse.names)
     return PlanRunResult.from_arrays(arrays, packed, meta)

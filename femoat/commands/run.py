@@ -23,6 +23,7 @@ def add_parser(sub):
 
 # units of the peak summary, by key prefix (longest first); lists hold one value per story/floor
 UNITS = (("peak_impact_force", "kip"), ("impacts_", "-"), ("peak_base_displacement", "in"),
+         ("peak_plan_base_displacement", "in"),
          ("peak_base_velocity", "in/s"), ("peak_wall_displacement", "in"),
          ("peak_indentation", "in"), ("peak_impulse", "kip*s"), ("peak_drift_ratio", "-"),
          ("peak_drift", "in"), ("peak_floor_acceleration", "g"),
@@ -50,6 +51,33 @@ def _fmt(value):
     return str(value)
 
 
+def _plan_outputs(result, out, figures):
+    """A plan run's impact table (impacts.csv) and figures (the base mat's orbit in the moat,
+    the impact force per wall): the paths written."""
+    import csv
+
+    from femoat.atomic import atomic_path
+
+    paths = [out / "impacts.csv"]
+    with atomic_path(paths[0]) as tmp:
+        with open(tmp, "w", newline="") as fh:
+            fields = ["side", "start", "duration", "approach_velocity", "peak_force",
+                      "max_indentation", "impulse"]
+            w = csv.DictWriter(fh, fieldnames=fields)
+            w.writeheader()
+            w.writerows(result.impacts)
+    if figures:
+        from femoat.plotting.plan_figures import plot_plan_impact_forces, plot_plan_orbit
+        from femoat.plotting.plan_history import PlanHistory
+
+        history = PlanHistory.from_result(result, title=result.meta["info"].get("motion", ""))
+        for plot, name in ((plot_plan_orbit, "plan_orbit.png"),
+                           (plot_plan_impact_forces, "plan_impact_forces.png")):
+            plot(history, out / name)  # (writes the file, returns the figure)
+            paths.append(out / name)
+    return paths
+
+
 def run(args):
     from femoat.collapse import describe_runaway
     from femoat.integration.solve import SolverError
@@ -69,13 +97,16 @@ def run(args):
         return 1
     result.meta["compile_seconds"] = startup
     result.save(out / "run.npz")
-    from femoat.report import write_outputs
+    if sc.plan:
+        paths = _plan_outputs(result, out, figures=sc.figures and not args.no_figures)
+    else:
+        from femoat.report import write_outputs
 
-    law = sc.model.walls[0].law.kind if sc.model.walls else "-"
-    wall = sc.wall_label
-    # (the figures include global_response.png, drawn once)
-    paths = write_outputs({(wall, law): result}, sc.motion, out, "scenario",
-                          figures=sc.figures and not args.no_figures)
+        law = sc.model.walls[0].law.kind if sc.model.walls else "-"
+        wall = sc.wall_label
+        # (the figures include global_response.png, drawn once)
+        paths = write_outputs({(wall, law): result}, sc.motion, out, "scenario",
+                              figures=sc.figures and not args.no_figures)
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:

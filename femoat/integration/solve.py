@@ -505,7 +505,8 @@ def _plan_arrays(packed):
                            np.zeros((0, N_BEARING_STATE)), np.zeros((nc, n)), np.zeros(nc))
     nb = packed.bearing_dofs.size // 2
     return _PlanArrays(
-        packed.dof_axis, np.ascontiguousarray(packed.layout.floor_dofs[0, :2], dtype=np.int64),
+        packed.dof_axis, np.array(packed.layout.floor_dofs[0, :2], dtype=np.int64),  # (writable:
+        # a read-only array is another type to numba, another signature to the AOT module)
         packed.bearing_dofs.reshape(nb, 2), packed.bearing_P.reshape(nb, N_BEARING_PARAMS),
         packed.bearing_S.reshape(nb, N_BEARING_STATE), np.ascontiguousarray(packed.c_T),
         np.ascontiguousarray(packed.c_friction))

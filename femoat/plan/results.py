@@ -416,6 +416,17 @@ class PlanRunResult:
         """Energy balance [kip·in] and its relative residual, as the solver gave it."""
         return self.meta["energy"]
 
+    @property
+    def collapse(self):
+        """Collapse criteria reached (:func:`femoat.collapse.collapse_summary`), None when the
+        run checked none."""
+        return self.meta.get("collapse")
+
+    @property
+    def runaway(self):
+        """None, or the runaway bound that ended the run (:func:`femoat.collapse.runaway_summary`)."""
+        return self.meta.get("runaway")
+
     # ---- persistence ---------------------------------------------------------------------
     def save(self, path):
         """Write to ``path`` (.npz), atomically."""
