@@ -158,4 +158,4 @@ def test_importing_femoat_and_loading_the_aot_module_reads_no_source_file(built,
     # the check can fail: the process that first keys the module on a fresh cache reads them
     done = _python(code, _env(tmp_path))
     used, reads = done.stdout.strip().split(" ", 1)
-    assert used == "jit" and str(sources.PACKAGE / "integration" / "kernel.py") in reads
+    assert used == "jit" and str(sources.PACKAGE / "integration" / "driver.py") in reads
