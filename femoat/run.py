@@ -89,25 +89,16 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         raise ValueError("channels names the histories to record; with history=False none "
                          "is recorded: leave channels at None.")
     kw = {} if channels is None else dict(channels=tuple(channels))
-    limits = runaway_limits(model, packed)
-    if collapse is not None:
-        if not isinstance(collapse, CollapseCriteria):
-            raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
-        limits = collapse.limits(model, packed) + limits
-        kw.update(stop_at_limit=collapse.stop)
+    limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, backend=backend, limits=limits, history=history, **kw)
+                 progress=progress, backend=backend, limits=limits, history=history,
+                 stop_at_limit=stop, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
                 laws=[w.law.kind for w in model.walls],
                 wall_damping=[getattr(w.wall, "damping_source", "modal") for w in model.walls])
     result = RunResult.from_history(hist, packed, info)
-    runaway = runaway_summary(limits, hist.limit_times, packed)
-    if runaway is not None:
-        result.meta["runaway"] = runaway
-    if collapse is not None:
-        result.meta["collapse"] = collapse_summary(limits, hist.limit_times,
-                                                   hist.stopped_at_limit, collapse.names)
+    result.meta.update(_limit_summaries(limits, hist, packed, collapse))
     return result
 
 
@@ -134,14 +125,10 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     integ = integrator or Integrator(method=PLAN_METHOD)
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
-    limits = runaway_limits(model, packed)
-    if collapse is not None:
-        if not isinstance(collapse, CollapseCriteria):
-            raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
-        limits = collapse.limits(model, packed) + limits
-        kw.update(stop_at_limit=collapse.stop)
+    limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
-                 u0=u0, v0=v0, progress=progress, backend=backend, limits=limits, **kw)
+                 u0=u0, v0=v0, progress=progress, backend=backend, limits=limits,
+                 stop_at_limit=stop, **kw)
     arrays = dict(hist.arrays)
     arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))
     info = dict(motion=pair.name, angle=float(pair.angle), scale=float(pair.scale),
@@ -149,10 +136,29 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
                 rtol=integ.rtol, alpha=integ.alpha, laws=[w.law.kind for w in model.walls])
     meta = dict(impacts=impact_rows(hist.impacts, packed.c_names), stats=hist.stats,
                 energy=hist.energy, info=info)
+    meta.update(_limit_summaries(limits, hist, packed, collapse))
+    return PlanRunResult.from_arrays(arrays, packed, meta)
+
+
+def _limits(model, packed, collapse):
+    """(the limit rows of a run: the criteria's, then the runaway bounds; whether the run stops
+    at its first criterion)."""
+    limits = runaway_limits(model, packed)
+    if collapse is None:
+        return limits, False
+    if not isinstance(collapse, CollapseCriteria):
+        raise ValueError("collapse must be a CollapseCriteria (femoat.collapse) or None.")
+    return collapse.limits(model, packed) + limits, collapse.stop
+
+
+def _limit_summaries(limits, hist, packed, collapse):
+    """{"runaway": ..., "collapse": ...}: what a result's meta says of its limit rows (each
+    only when it applies)."""
+    out = {}
     runaway = runaway_summary(limits, hist.limit_times, packed)
     if runaway is not None:
-        meta["runaway"] = runaway
+        out["runaway"] = runaway
     if collapse is not None:
-        meta["collapse"] = collapse_summary(limits, hist.limit_times, hist.stopped_at_limit,
-                                            collapse.names)
-    return PlanRunResult.from_arrays(arrays, packed, meta)
+        out["collapse"] = collapse_summary(limits, hist.limit_times, hist.stopped_at_limit,
+                                           collapse.names)
+    return out

@@ -201,14 +201,9 @@ def plan_friction_pendulum_z(s):
 def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
     """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] (2, 2) and ∂f/∂v ``c`` [kip·s/in] (2, 2),
     written in place, at the trial (ux, uy) [in], (vx, vy) [in/s] from the committed state
-    ``s``, which is not modified."""
-    w = p[_W]
-    k_r = w / p[_R]
-    zx, zy, norm = _z(p, s, ux, uy)
-    mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
-    f[0] = k_r * ux + mu * w * zx
-    f[1] = k_r * uy + mu * w * zy
-    _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c)
+    ``s``, which is not modified: one radial return (a path of no duration)."""
+    plan_friction_pendulum_path_trial(p, s, s[_UCX], s[_UCY], 0.0, 0.0, ux, uy, vx, vy, 0.0, f, k,
+                                      c)
 
 
 @njit(cache=True, inline="always")
@@ -234,14 +229,9 @@ def _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c):
 
 @njit(cache=True)
 def plan_friction_pendulum_commit(p, s, ux, uy, vx, vy):
-    """Advance the committed state ``s`` in place to the converged (ux, uy), (vx, vy)."""
-    zx, zy, _ = _z(p, s, ux, uy)
-    s[_UCX] = ux
-    s[_UCY] = uy
-    s[_ZCX] = zx
-    s[_ZCY] = zy
-    s[_VCX] = vx
-    s[_VCY] = vy
+    """Advance the committed state ``s`` in place to the converged (ux, uy), (vx, vy): one
+    radial return (a path of no duration)."""
+    plan_friction_pendulum_path_commit(p, s, s[_UCX], s[_UCY], 0.0, 0.0, ux, uy, vx, vy, 0.0)
 
 
 @njit(cache=True)
