@@ -184,7 +184,7 @@ def read_at2_pair(path_x, path_y, *, angle=0.0, scale=1.0, pad=False):
     """
     x, y = read_at2(path_x), read_at2(path_y)
     if pad:
-        x, y = _zero_padded(x, y)
+        x, y = zero_padded(x, y)
     return RecordPair(x, y, angle, scale)
 
 
@@ -214,7 +214,7 @@ def fema_p695_pair(record_set, record_id, *, angle=0.0, scale=1.0, normalized=Fa
     if normalized:
         nf = float(_load(record_set).records.loc[int(record_id)]["NormalizationFactor"])
         scale = _number("scale", scale, "[-]", "a positive amplitude factor, e.g. 1.5") * nf
-    a, b = _zero_padded(a, b)
+    a, b = zero_padded(a, b)
     return RecordPair(a, b, angle, scale, f"{record_set}/{int(record_id)}")
 
 
@@ -352,7 +352,7 @@ def _cos_sin(angle_deg):
     return math.cos(theta), math.sin(theta)
 
 
-def _zero_padded(x, y):
+def zero_padded(x, y):
     """x and y extended with zeros to the longer one's length (noted in the source)."""
     npts = max(x.npts, y.npts)
     out = []

@@ -38,8 +38,12 @@ SECTIONS = {  # section: what its columns say (the headings of docs/suite_table.
     "peaks": "the peak responses and the run's cost",
 }
 PLANNED = ("identity", "intensity", "variation")  # read before the run
+WALL_KEYS = ("pos", "neg", "px", "mx", "py", "my")
+"""The wall keys of a table: a 1D suite's walls on the positive and negative side, a plan
+suite's +x, -x, +y, -y walls."""
 PER = {  # family: (placeholder in the name, the indices of a suite)
     "story": ("k", lambda suite: range(1, suite.n_stories + 1)),
+    "wall": ("w", lambda suite: suite.walls),
     "criterion": ("c", lambda suite: CRITERIA),
     "key": ("key", lambda suite: suite.varied),
 }
@@ -58,8 +62,10 @@ class Column:
         the task fills it
     description : str  what the column holds (docs/suite_table.md)
     section : str  one of :data:`SECTIONS`
-    per : str or None  the family: "story" | "criterion" | "key"
+    per : str or None  the family: "story" | "wall" | "criterion" | "key"
     failed : object  the value when the run did not finish (columns read from the result)
+    models : str or None  "plan": a plan suite's column only; "1d": a 1D suite's only; None:
+        every suite's (in a plan suite, a building-wide value over both axes: the larger)
     """
 
     name: str
@@ -70,8 +76,12 @@ class Column:
     section: str
     per: str | None = None
     failed: object = None
+    models: str | None = None
 
     def __post_init__(self):
+        if self.models not in (None, "1d", "plan"):
+            raise ValueError(f"column {self.name}: models = {self.models!r}, use None, '1d' or "
+                             "'plan'")
         if self.dtype not in DTYPES and not (self.dtype is None and self.per == "key"):
             raise ValueError(f"column {self.name}: dtype = {self.dtype!r}, use one of {DTYPES}")
         if self.section not in SECTIONS:
@@ -112,14 +122,44 @@ def _criterion_time(result, c):
     return math.nan if t is None else float(t)
 
 
+def _per_story(peaks, name):
+    """The per-story list ``name`` of a run's peaks; in a plan run, where the peaks hold it per
+    axis (``name_x``, ``name_y``), the larger of the two story by story; None when not
+    recorded."""
+    if name in peaks:
+        return peaks[name]
+    x, y = peaks.get(f"{name}_x"), peaks.get(f"{name}_y")
+    if x is None or y is None:
+        return None
+    return [max(a, b) for a, b in zip(x, y)]
+
+
 def _story(peaks, name, k):
-    """Story ``k``'s (1 at the bottom) value of the per-story peak ``name``; NaN above the
-    variation's own stories (a suite's variations may differ in height) or when not recorded."""
-    values = peaks.get(name)
-    n = len(peaks["peak_drift"])
+    """Story ``k``'s (1 at the bottom) value of the per-story peak ``name`` (:func:`_per_story`);
+    NaN above the variation's own stories (a suite's variations may differ in height) or when
+    not recorded."""
+    values = _per_story(peaks, name)
     if values is None:
         return math.nan
-    return float(np.asarray(values, dtype=float)[k - 1]) if k <= n else math.nan
+    return float(np.asarray(values, dtype=float)[k - 1]) if k <= len(values) else math.nan
+
+
+def _largest_over_axes(peaks, name):
+    """A scalar peak ``name``, or in a plan run the larger of ``name_x`` and ``name_y``."""
+    if name in peaks:
+        return _optional(peaks[name])
+    values = [peaks.get(f"{name}_{a}") for a in ("x", "y")]
+    return math.nan if None in values else float(max(values))
+
+
+def _impacts(peaks, w):
+    value = peaks.get(f"impacts_{w}")
+    return None if value is None else int(value)
+
+
+def _pounding(peaks):
+    """Any impact on any wall."""
+    return any(v for k, v in peaks.items() if k.startswith("impacts_") and v)
 
 
 def _optional(x):
@@ -136,7 +176,8 @@ COLUMNS = (
     Column("femoat_version", "string", "", lambda p: code_version(),
            "femoat's version and a fingerprint of the sources that compute a run", "identity"),
     Column("record", "string", "", lambda p: p.record.label,
-           "the record's label, e.g. farfield/3b or the AT2 file's stem", "identity"),
+           "the record's label, e.g. farfield/3b or the AT2 file's stem (a plan suite: the "
+           "pair and its angle, e.g. farfield/3@30)", "identity"),
     Column("variation", "string", "", lambda p: var.label(p.suite.combos[p.spec.var]),
            "the variation's label, e.g. walls.law=E (base when nothing varies)", "identity"),
     Column("record_set", "string", "", lambda p: p.record.record_set,
@@ -148,7 +189,7 @@ COLUMNS = (
     Column("record_name", "string", "", lambda p: p.record.record_name,
            "PEER component name", "identity"),
     Column("component", "string", "", lambda p: p.record.component,
-           "'a' or 'b' of a FEMA P695 pair", "identity"),
+           "'a' or 'b' of a FEMA P695 pair (empty in a plan suite: both)", "identity"),
     Column("earthquake", "string", "", lambda p: p.record.earthquake,
            "the earthquake's name", "identity"),
     Column("magnitude", "float64", "-", lambda p: p.record.magnitude,
@@ -157,6 +198,8 @@ COLUMNS = (
            "closest distance to the rupture plane", "identity"),
     Column("pulse", "bool", "", lambda p: p.record.pulse,
            "a pulse-like record", "identity"),
+    Column("angle", "float64", "deg", lambda p: p.record.angle,
+           "the pair's orientation in plan, from +x toward +y", "identity", models="plan"),
     Column("scale_factor", "float64", "-", lambda p: p.factor,
            "total amplitude factor on the unscaled record", "intensity"),
     Column("im_kind", "string", "", lambda p: p.suite.scaling.im_kind,
@@ -164,9 +207,10 @@ COLUMNS = (
     Column("im", "float64", "g", lambda p: p.spec.im,
            "the run's intensity", "intensity"),
     Column("sa_t", "float64", "g", _sa,
-           "Sa(T) as applied (empty without a period)", "intensity"),
+           "Sa(T) as applied (empty without a period; a pair: the geometric mean of its "
+           "components')", "intensity"),
     Column("pga", "float64", "g", lambda p: p.suite.scaling.pga[p.spec.rec] * p.factor,
-           "PGA as applied", "intensity"),
+           "PGA as applied (a pair: the geometric mean of its components')", "intensity"),
     Column("{key}", None, "", lambda p, key: p.suite.combos[p.spec.var][key],
            "one column per varied key, named by its dotted key (e.g. walls.law), typed by its "
            "values", "variation", per="key"),
@@ -184,41 +228,52 @@ COLUMNS = (
     Column("collapse_{c}_time", "float64", "s", _criterion_time,
            "when criterion c was first reached (NaN if not)", "outcome", per="criterion",
            failed=math.nan),
-    Column("peak_impact_force_pos", "float64", "kip", lambda r: r.peaks["peak_impact_force_pos"],
-           "peak contact force on the wall on the positive side", "peaks"),
-    Column("peak_impact_force_neg", "float64", "kip", lambda r: r.peaks["peak_impact_force_neg"],
-           "peak contact force on the wall on the negative side", "peaks"),
-    Column("impacts_pos", "int64", "", lambda r: int(r.peaks["impacts_pos"]),
-           "impacts on the positive side", "peaks"),
-    Column("impacts_neg", "int64", "", lambda r: int(r.peaks["impacts_neg"]),
-           "impacts on the negative side", "peaks"),
-    Column("peak_base_displacement", "float64", "in", lambda r: r.peaks["peak_base_displacement"],
-           "peak isolator (base) displacement", "peaks"),
-    Column("peak_wall_displacement_pos", "float64", "in",
-           lambda r: r.peaks.get("peak_wall_displacement_pos", math.nan),
-           "peak displacement of the positive wall at the impact point (NaN without a wall on "
-           "that side)", "peaks"),
-    Column("peak_wall_displacement_neg", "float64", "in",
-           lambda r: r.peaks.get("peak_wall_displacement_neg", math.nan),
-           "the same, negative side", "peaks"),
+    Column("peak_base_displacement", "float64", "in",
+           lambda r: r.peaks.get("peak_base_displacement",
+                                 r.peaks.get("peak_plan_base_displacement")),
+           "peak isolator (base) displacement; in a plan suite its largest displacement in plan "
+           "|u| (the vector sum, as ASCE 7 Chapter 17 measures it)", "peaks"),
+    Column("peak_base_displacement_x", "float64", "in",
+           lambda r: r.peaks["peak_base_displacement_x"],
+           "peak base displacement along x", "peaks", models="plan"),
+    Column("peak_base_displacement_y", "float64", "in",
+           lambda r: r.peaks["peak_base_displacement_y"],
+           "peak base displacement along y", "peaks", models="plan"),
+    Column("peak_impact_force_{w}", "float64", "kip",
+           lambda r, w: _optional(r.peaks.get(f"peak_impact_force_{w}")),
+           "peak contact force on wall w: pos, neg (1D: the walls on the positive and negative "
+           "side) or px, mx, py, my (plan: the +x, -x, +y, -y walls; NaN without that wall)",
+           "peaks", per="wall"),
+    Column("impacts_{w}", "int64", "", lambda r, w: _impacts(r.peaks, w),
+           "impacts on wall w (empty without that wall)", "peaks", per="wall"),
+    Column("peak_wall_displacement_{w}", "float64", "in",
+           lambda r, w: _optional(r.peaks.get(f"peak_wall_displacement_{w}")),
+           "peak displacement of wall w at the impact point (NaN without that wall)", "peaks",
+           per="wall"),
     Column("peak_drift_{k}", "float64", "in", lambda r, k: _story(r.peaks, "peak_drift", k),
-           "peak drift of story k (1 at the bottom; NaN above a shorter variation's top)",
-           "peaks", per="story"),
+           "peak drift of story k (1 at the bottom; NaN above a shorter variation's top; plan: "
+           "the larger of x and y)", "peaks", per="story"),
     Column("peak_drift_ratio_{k}", "float64", "-",
            lambda r, k: _story(r.peaks, "peak_drift_ratio", k),
            "peak drift of story k / its height", "peaks", per="story"),
     Column("peak_floor_acceleration_{k}", "float64", "g",
            lambda r, k: _story(r.peaks, "peak_floor_acceleration", k),
            "peak absolute acceleration of the floor on top of story k", "peaks", per="story"),
+    Column("peak_drift_ratio_x_{k}", "float64", "-",
+           lambda r, k: _story(r.peaks, "peak_drift_ratio_x", k),
+           "peak drift ratio of story k along x", "peaks", per="story", models="plan"),
+    Column("peak_drift_ratio_y_{k}", "float64", "-",
+           lambda r, k: _story(r.peaks, "peak_drift_ratio_y", k),
+           "peak drift ratio of story k along y", "peaks", per="story", models="plan"),
     Column("peak_drift_ratio", "float64", "-",
-           lambda r: float(np.asarray(r.peaks["peak_drift_ratio"], dtype=float).max(initial=0.0)),
-           "largest peak drift ratio over the stories", "peaks"),
+           lambda r: float(np.asarray(_per_story(r.peaks, "peak_drift_ratio"),
+                                      dtype=float).max(initial=0.0)),
+           "largest peak drift ratio over the stories (plan: and over x and y)", "peaks"),
     Column("peak_base_acceleration", "float64", "g",
-           lambda r: _optional(r.peaks.get("peak_base_acceleration")),
-           "peak absolute acceleration of the base mat", "peaks"),
-    Column("pounding", "bool", "",
-           lambda r: bool(r.peaks["impacts_pos"] + r.peaks["impacts_neg"] > 0),
-           "any impact", "peaks"),
+           lambda r: _largest_over_axes(r.peaks, "peak_base_acceleration"),
+           "peak absolute acceleration of the base mat (plan: the larger of x and y)", "peaks"),
+    Column("pounding", "bool", "", lambda r: _pounding(r.peaks),
+           "any impact on any wall", "peaks"),
     Column("t_reached", "float64", "s", lambda r: float(r.meta["stats"]["t_reached"]),
            "the run's last time (the collapse time when it stopped there)", "peaks"),
     Column("cpu_seconds", "float64", "s", None,
@@ -249,15 +304,18 @@ class Field(NamedTuple):
 def fields(suite):
     """The :class:`Field` list of ``suite``'s table, in column order: the rows of
     :data:`COLUMNS`, a run of consecutive rows of one family repeated per index (per story:
-    peak_drift_1, peak_drift_ratio_1, peak_floor_acceleration_1, peak_drift_2, ...)."""
+    peak_drift_1, peak_drift_ratio_1, peak_floor_acceleration_1, peak_drift_2, ...); the rows
+    of the other kind of model left out (:attr:`Column.models`)."""
+    kind = "plan" if suite.plan else "1d"
     out, i = [], 0
     while i < len(COLUMNS):
         col = COLUMNS[i]
         if col.per is None:
-            out.append(Field(col.name, col.dtype, col, None))
+            if col.models in (None, kind):
+                out.append(Field(col.name, col.dtype, col, None))
             i += 1
             continue
-        group = _run_of(i)
+        group = [c for c in _run_of(i) if c.models in (None, kind)]
         placeholder, indices = PER[col.per]
         for index in indices(suite):
             for c in group:
@@ -315,7 +373,8 @@ def column_of(name):
         elif col.per != "key":
             holder = f"{{{PER[col.per][0]}}}"
             head, tail = col.name.split(holder)
-            member = r"\d+" if col.per == "story" else "|".join(map(re.escape, CRITERIA))
+            member = {"story": r"\d+", "criterion": "|".join(map(re.escape, CRITERIA)),
+                      "wall": "|".join(WALL_KEYS)}[col.per]
             if re.fullmatch(re.escape(head) + f"(?:{member})" + re.escape(tail), name):
                 return col
     return None
@@ -331,8 +390,10 @@ def markdown():
             if col.section == section:
                 name = col.name.replace("{", "<").replace("}", ">")
                 unit = f"[{col.unit}]" if col.unit else ""
+                only = {"plan": " (plan suites only)", "1d": " (1D suites only)"}.get(col.models,
+                                                                                      "")
                 lines.append(f"| `{name}` | {col.dtype or 'from the values'} | {unit} | "
-                             f"{col.description} |")
+                             f"{col.description}{only} |")
     return "\n".join(lines[1:]) + "\n"
 
 

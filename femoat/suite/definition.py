@@ -26,6 +26,9 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     # folder = "records"          # every *.AT2 in it (relative to this file)
     # glob = "records/RSN*.AT2"
     # files = ["a.AT2", "b.AT2"]
+    # pairs = true                # a plan suite ([building] plan = true, [moat] for [walls]):
+    # angles = [0, 45, 90, 135]   # record pairs (a along x, b along y; or pairs = [["x.AT2",
+                                  # "y.AT2"], ...]) each turned by every angle [deg]
     time_scale = 0.5              # similitude factor on time (default 0.5, the quarter-scale
                                   # paper building); periods in [scaling] are PROTOTYPE periods
     duration = 20.0               # [s] keep only the first 20 s of each record (default: all)
@@ -83,8 +86,8 @@ from femoat.suite import records as rec
 from femoat.suite import scaling as sc
 from femoat.suite import variations as var
 
-TABLES = {"building", "walls", "solver", "collapse", "records", "variations", "scaling", "run",
-          "p695"}
+TABLES = {"building", "walls", "moat", "solver", "collapse", "records", "variations", "scaling",
+          "run", "p695"}
 RUN_KEYS = {"batch_size", "histories", "stop_on_collapse", "solver_failure"}
 HEADLINE = Path(__file__).with_name("headline.toml")
 
@@ -108,6 +111,7 @@ class Suite:
     stop_on_collapse: bool
     solver_failure: str
     n_stories: int
+    plan: bool  # a building in plan under record pairs ([building] plan = true)
     hash: str  # 16 hex digits of everything that changes a result (the module docstring)
     code: str  # code_version() of the process that defined the suite
 
@@ -126,7 +130,16 @@ class Suite:
                     time_scale_note="periods are prototype periods; the model period is "
                     "period x time_scale",
                     period=s.period, smt=s.smt, sdc=s.sdc,
-                    solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse)
+                    solver_failure=self.solver_failure, stop_on_collapse=self.stop_on_collapse,
+                    plan=self.plan, walls=list(self.walls))
+
+    @property
+    def walls(self):
+        """The table's wall keys: ``pos``, ``neg`` (1D) or ``px``, ``mx``, ``py``, ``my`` (a
+        plan suite: the +x, −x, +y, −y walls)."""
+        from femoat.plan.results import SIDE_KEYS
+
+        return tuple(SIDE_KEYS.values()) if self.plan else ("pos", "neg")
 
 
 @functools.lru_cache(maxsize=1)
@@ -181,9 +194,12 @@ def suite_from_dict(d, base_dir=Path(".")):
     time_scale = _number(rd, "time_scale", 0.5, "[records]")
     duration = _number(rd, "duration", None, "[records]")
     extra_time = _number(rd, "extra_time", 2.0, "[records]", zero=True)
+    from femoat.scenario.building import is_plan
+
+    plan = isinstance(d.get("building"), dict) and is_plan(d["building"])
     refs = tuple(rec.records_from_dict({k: v for k, v in rd.items()
                                         if k not in ("time_scale", "duration", "extra_time")},
-                                       base_dir))
+                                       base_dir, plan))
 
     tables = {k: d[k] for k in var.MODEL_TABLES if k in d}
     varied, combos = var.variations_from_dict(d.get("variations", {}))
@@ -203,7 +219,7 @@ def suite_from_dict(d, base_dir=Path(".")):
     digest = hashlib.sha256(json.dumps(key, sort_keys=True, default=str).encode()).hexdigest()
     return Suite(d, str(base_dir), tables, refs, time_scale, duration, extra_time,
                  tuple(varied), tuple(combos), scaling, batch, tuple(histories), stop, policy,
-                 n_stories, hash=digest[:16], code=code)
+                 n_stories, plan, hash=digest[:16], code=code)
 
 
 def _culprit(tables, combo, stop, base_dir):

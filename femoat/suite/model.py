@@ -1,9 +1,10 @@
 """One variation of a suite: its model from the scenario tables, and one run of it with
 collapse detection.
 
-The model tables are parsed by :mod:`femoat.scenario` (``building_from_dict``,
-``walls_from_dict``, ``solver_from_dict``, ``collapse_from_dict``): a suite accepts exactly what
-a scenario file accepts. Collapse criteria (:mod:`femoat.collapse`) are checked by the solver
+The model tables are parsed by :mod:`femoat.scenario` (``model_from_dict``,
+``solver_from_dict``, ``collapse_from_dict``): a suite accepts exactly what a scenario file
+accepts, a building in plan (``[building] plan = true`` with ``[moat]``) included, whose solver
+defaults to a plan run's method (:data:`femoat.run.PLAN_METHOD`). Collapse criteria (:mod:`femoat.collapse`) are checked by the solver
 after every step; ``[run] stop_on_collapse`` is the default of ``[collapse] stop``.
 """
 
@@ -15,7 +16,7 @@ from pathlib import Path
 class Variation:
     """A parsed variation: everything one run needs besides the motion."""
 
-    pounding: object  # PoundingModel
+    pounding: object  # PoundingModel, or PlanModel (a plan suite)
     integrator: object  # Integrator
     criteria: object  # CollapseCriteria
 
@@ -26,17 +27,19 @@ class Variation:
 
 
 def build_variation(tables, stop_on_collapse=True, base_dir=Path(".")):
-    """A :class:`Variation` from the model tables {'building', 'walls', 'solver', 'collapse'}."""
+    """A :class:`Variation` from the model tables {'building', 'walls' or 'moat', 'solver',
+    'collapse'}."""
     from femoat import scenario
-    from femoat.structure.pounding import PoundingModel
-    from femoat.units import G
+    from femoat.plan import PlanModel
+    from femoat.run import PLAN_METHOD
 
-    building = scenario.building_from_dict(tables.get("building", {}))
-    walls = scenario.walls_from_dict(tables.get("walls", {}), base_dir, building.base_weight / G)
+    model = scenario.model_from_dict(tables, base_dir)
     collapse = dict(tables.get("collapse", {}))
     collapse.setdefault("stop", bool(stop_on_collapse))
-    integrator = scenario.solver_from_dict(tables.get("solver", {}))
-    return Variation(PoundingModel(building, walls), integrator,
+    solver = dict(tables.get("solver", {}))
+    if isinstance(model, PlanModel):
+        solver.setdefault("method", PLAN_METHOD)
+    return Variation(model, scenario.solver_from_dict(solver),
                      scenario.collapse_from_dict(collapse))
 
 

@@ -22,12 +22,14 @@ FILES = {
     "response_by_variation.csv": "per variation and intensity: records (IDA: a record that "
     "collapsed below the intensity counts as collapsed there; stripes: runs), collapses and, "
     "over the runs that did not collapse, the median and lognormal dispersion (std of ln over "
-    "the positive values) across records of the peak impact force [kip] (max of both walls), "
+    "the positive values) across records of the peak impact force [kip] (max over the walls), "
     "peak wall displacement [in], peak base (isolator) displacement [in], peak drift ratio [-] "
     "and peak floor acceleration [g]; the probability of pounding counts every run, collapsed "
     "or not. A dispersion near or above 1 means the runs mix very different responses.",
     "pounding_probability.csv": "per variation and intensity: the fraction of runs (records) "
-    "with any impact.",
+    "with any impact, then with an impact on each wall (pos, neg: the walls on the positive "
+    "and negative side; a plan suite's px, mx, py, my: the +x, -x, +y, -y walls). In a plan "
+    "suite a record is a pair at one angle, and its base displacement is measured in plan.",
     "responses_near_mce.csv": "at the intensity nearest {ref}, per variation, the runs that "
     "pounded and those that did not, apart: their number and the median and dispersion of each "
     "response (runs that collapsed left out). Without pounding the impact force is zero and "

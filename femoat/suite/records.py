@@ -1,5 +1,11 @@
 """The records of a suite: which ones (``[records]``), their metadata, and loading them once.
 
+A plan suite (``[building] plan = true``) runs record **pairs**: ``pairs = true`` with a FEMA
+P695 ``set`` (component a along x, b along y), or ``pairs = [["x.AT2", "y.AT2"], ...]``, each at
+every orientation of ``angles`` [deg] (default [0]; positive from +x toward +y,
+:mod:`femoat.ground_motions.pair`). A :class:`PairRef` is one pair at one angle: the suite's
+"record" of a run (its label, e.g. ``farfield/3@30``, names both).
+
 A :class:`RecordRef` names one component by identity (a FEMA P695 set, ID and component, or an AT2
 file) and carries what the results table reports about it. :func:`load_motion` turns a reference
 into the **unscaled** :class:`~femoat.ground_motions.GroundMotion`, cached per process so that a
@@ -11,6 +17,7 @@ run it (an AT2 folder must be the same on every machine of a cluster).
 import functools
 import glob as globmod
 import hashlib
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,7 +29,10 @@ SETS = {"farfield": ("farfield",), "nearfield_pulse": ("nearfield_pulse",),
         "nearfield": ("nearfield_pulse", "nearfield_no_pulse")}
 """``[records] set`` choices and the FEMA P695 sets each stands for (``nearfield``: 28 x 2)."""
 
-KEYS = {"set", "ids", "components", "folder", "glob", "files", "time_scale", "duration"}
+KEYS = {"set", "ids", "components", "folder", "glob", "files", "time_scale", "duration", "pairs",
+        "angles"}
+PAIR_KEYS = {"pairs", "angles"}
+"""The keys of a plan suite's records (``[building] plan = true``): its records are pairs."""
 
 
 @dataclass(frozen=True)
@@ -51,17 +61,85 @@ class RecordRef:
         return self.record_id
 
 
-def records_from_dict(d, base_dir=Path(".")):
-    """The :class:`RecordRef` list of the ``[records]`` table, each record loaded and checked."""
+@dataclass(frozen=True)
+class PairRef:
+    """One record pair of a plan suite, at one orientation: its x and y components (each a
+    :class:`RecordRef`) and the angle [deg] the pair is turned by in plan. It answers what a
+    :class:`RecordRef` answers (the record's metadata are those of x: the two components of
+    one recording share them), with no single component."""
+
+    x: RecordRef
+    y: RecordRef
+    angle: float  # [deg]
+
+    source = property(lambda self: self.x.source)
+    record_set = property(lambda self: self.x.record_set)
+    component = None
+    path = None
+    rsn = property(lambda self: self.x.rsn)
+    earthquake = property(lambda self: self.x.earthquake)
+    magnitude = property(lambda self: self.x.magnitude)
+    distance_km = property(lambda self: self.x.distance_km)
+    pulse = property(lambda self: self.x.pulse)
+    normalization = property(lambda self: self.x.normalization)
+
+    @property
+    def record_id(self):
+        """The set ID, or the two files' stems joined by '+'."""
+        return self.x.record_id if self.source == "fema" else \
+            f"{self.x.record_id}+{self.y.record_id}"
+
+    @property
+    def record_name(self):
+        """The two PEER component names, x + y."""
+        return f"{self.x.record_name} + {self.y.record_name}"
+
+    @property
+    def digest(self):
+        """Both components' digests."""
+        return f"{self.x.digest}{self.y.digest}"
+
+    @property
+    def pair_label(self):
+        """The pair's label without the angle, e.g. ``farfield/3``."""
+        return f"{self.record_set}/{self.record_id}" if self.source == "fema" else self.record_id
+
+    @property
+    def label(self):
+        """Short unique label: the pair and its angle, e.g. ``farfield/3@30``."""
+        return f"{self.pair_label}@{self.angle:g}"
+
+    @property
+    def components(self):
+        """(x, y): the two :class:`RecordRef`."""
+        return self.x, self.y
+
+
+def records_from_dict(d, base_dir=Path("."), plan=False):
+    """The :class:`RecordRef` list of the ``[records]`` table, each record loaded and checked;
+    with ``plan`` (a plan suite) the :class:`PairRef` list, pair by pair and angle by angle."""
     from femoat.scenario import check_keys
 
     d = dict(d)
     check_keys(d, KEYS, "[records]")
+    if not plan:
+        stray = sorted(PAIR_KEYS & set(d))
+        if stray:
+            raise ValueError(f"[records] {', '.join(stray)}: record pairs run a building in plan; "
+                             "add plan = true to [building] (or remove the key).")
+    elif "pairs" not in d:
+        raise ValueError("[records]: a plan suite ([building] plan = true) runs record pairs: add "
+                         "pairs = true with set = '...' (FEMA P695, a along x, b along y) or pairs "
+                         "= [['x.AT2', 'y.AT2'], ...].")
     sources = [k for k in ("set", "folder", "glob", "files") if k in d]
+    if plan and not sources and isinstance(d["pairs"], list):
+        sources = ["pairs"]
     if len(sources) != 1:
         raise ValueError("[records] needs exactly one of set = 'farfield' (FEMA P695), "
-                         "folder = 'dir', glob = 'dir/*.AT2' or files = [...]; got "
-                         f"{sources or 'none'}.")
+                         "folder = 'dir', glob = 'dir/*.AT2' or files = [...]"
+                         + (" (a plan suite: set = '...' with pairs = true, or pairs = "
+                            "[['x.AT2', 'y.AT2'], ...])" if plan else "")
+                         + f"; got {sources or 'none'}.")
     for key, kind, example in (("ids", int, "[1, 2, 3]"), ("components", str, "['a', 'b']"),
                                ("files", str, "['a.AT2', 'b.AT2']")):
         if key in d and (not isinstance(d[key], list) or not all(
@@ -70,19 +148,85 @@ def records_from_dict(d, base_dir=Path(".")):
     for key in ("set", "folder", "glob"):
         if key in d and not isinstance(d[key], str):
             raise ValueError(f"[records] {key} = {d[key]!r}: give a string.")
+    if plan:
+        return _pair_refs(d, Path(base_dir), sources[0])
     if "set" in d:
         return _fema_refs(d)
     for key in ("ids", "components"):
         if key in d:
             raise ValueError(f"[records] {key} applies to set = '...' (FEMA P695) only.")
     refs = [_at2_ref(p) for p in _files(d, Path(base_dir))]
+    _check_unique(refs)
+    return refs
+
+
+def _check_unique(refs):
     seen = {}
     for r in refs:  # the file stem names a record in the table and in run ids
         if r.label in seen:
             raise ValueError(f"[records] two files are named {r.label}: {seen[r.label]} and "
                              f"{r.path}; rename one (each record needs its own name).")
         seen[r.label] = r.path
-    return refs
+
+
+def _pair_refs(d, base_dir, source):
+    """The pairs of a plan suite, each at every angle of ``angles``."""
+    angles = d.get("angles", [0.0])
+    if not isinstance(angles, list) or not angles or not all(
+            isinstance(a, (int, float)) and not isinstance(a, bool) and math.isfinite(a)
+            for a in angles):
+        raise ValueError(f"[records] angles = {angles!r}: give a non-empty list of orientations "
+                         "[deg], e.g. [0, 45, 90, 135].")
+    if len({float(a) for a in angles}) != len(angles):
+        raise ValueError(f"[records] angles = {angles!r} lists an angle twice.")
+    pairs = d["pairs"]
+    if source == "set":
+        if pairs is not True:
+            raise ValueError(f"[records] pairs = {pairs!r}: with set = '...' give pairs = true "
+                             "(component a along x, b along y).")
+        if "components" in d:
+            raise ValueError("[records] components: a plan suite applies both components of "
+                             "each record (a along x, b along y); remove the key.")
+        refs = _fema_refs({k: v for k, v in d.items() if k in ("set", "ids")})
+        comps = [(refs[i], refs[i + 1]) for i in range(0, len(refs), 2)]
+    elif source == "pairs":
+        for key in ("ids", "components"):
+            if key in d:
+                raise ValueError(f"[records] {key} applies to set = '...' (FEMA P695) only.")
+        if not pairs or not all(isinstance(p, list) and len(p) == 2 and all(
+                isinstance(f, str) for f in p) for p in pairs):
+            raise ValueError(f"[records] pairs = {pairs!r}: give a list of [x, y] file pairs, "
+                             "e.g. [['RSN1_X.AT2', 'RSN1_Y.AT2']] (or pairs = true with set = "
+                             "'...').")
+        comps = []
+        for i, (fx, fy) in enumerate(pairs):
+            px, py = (_resolve(f, base_dir) for f in (fx, fy))
+            for f, given in ((px, fx), (py, fy)):
+                if not f.is_file():
+                    raise ValueError(f"[records] pairs[{i}]: {given!r} ({f}) does not exist.")
+            comps.append((_at2_ref(px), _at2_ref(py)))
+    else:
+        raise ValueError(f"[records] {source} = ...: a plan suite's records are pairs; give "
+                         "pairs = [['x.AT2', 'y.AT2'], ...] (or set = '...' with pairs = true).")
+    out = [PairRef(x, y, float(a)) for x, y in comps for a in angles]
+    for x, y in comps:
+        _check_pair(x, y)
+    seen = set()
+    for r in out:
+        if r.label in seen:
+            raise ValueError(f"[records] the pair {r.pair_label} is listed twice.")
+        seen.add(r.label)
+    return out
+
+
+def _check_pair(x, y):
+    """Both components of a pair share one time step (one is extended with zeros to the
+    other's length, as :func:`femoat.ground_motions.pair.fema_p695_pair` does)."""
+    gx, gy = load_motion(x), load_motion(y)
+    if gx.dt != gy.dt:
+        raise ValueError(f"[records] pair {x.label} + {y.label}: the components' time steps "
+                         f"differ ({gx.dt:g} s and {gy.dt:g} s); a pair needs one time step "
+                         "(resample one of them, or pair the two components of one recording).")
 
 
 def _fema_refs(d):
@@ -137,12 +281,13 @@ def _files(d, base_dir):
         if not files:
             raise ValueError(f"[records] glob = {d['glob']!r}: no file matches {pattern}.")
         return files
-    files = [_resolve(p, base_dir) for p in d["files"]]
+    given = d["files"] if "files" in d else [f for pair in d.get("pairs", []) for f in pair]
+    files = [_resolve(p, base_dir) for p in given]
     if not files:
         raise ValueError("[records] files = []: list at least one AT2 file.")
-    for p, given in zip(files, d["files"]):
+    for p, name in zip(files, given):
         if not p.is_file():
-            raise ValueError(f"[records] files: {given!r} ({p}) does not exist.")
+            raise ValueError(f"[records] files: {name!r} ({p}) does not exist.")
     return files
 
 
@@ -199,3 +344,17 @@ def applied_motion(ref, factor, time_scale, duration=None):
         gm = GroundMotion(gm.accel_g[:n], gm.dt, gm.name, f"{gm.source}; first {duration:g} s")
     gm = gm.scaled(factor)
     return gm.time_scaled(time_scale) if time_scale != 1.0 else gm
+
+
+
+def applied(ref, factor, time_scale, duration=None):
+    """What a run applies: :func:`applied_motion` of a component, or for a :class:`PairRef`
+    its pair turned by its angle, both components cut, scaled and time-scaled alike (the
+    shorter one extended with zeros to the longer one's length)."""
+    if not isinstance(ref, PairRef):
+        return applied_motion(ref, factor, time_scale, duration)
+    from femoat.ground_motions.pair import RecordPair, zero_padded
+
+    x, y = zero_padded(*(applied_motion(c, factor, time_scale, duration)
+                         for c in ref.components))
+    return RecordPair(x, y, angle=ref.angle, name=ref.label)

@@ -247,7 +247,8 @@ def write_report(table, meta, out_dir, *, mu_t=None, sdc=None, ratings=None, bet
     cols = ["variation", *varied]
     resp = pd.concat(responses, ignore_index=True) if responses else pd.DataFrame(columns=cols)
     resp = resp[cols + [c for c in resp.columns if c not in cols]]
-    keep = ["im [g]", "im / S_MT [-]", "n_records", "pounding probability [-]"]
+    keep = ["im [g]", "im / S_MT [-]", "n_records", "pounding probability [-]",
+            *(f"pounding probability, wall {w} [-]" for w in st.walls(table))]
     pound = resp[cols + [c for c in keep if c in resp.columns]] if len(resp) else resp
     paths = [_write_csv(pd.DataFrame([v.summary for v in results]), out / "collapse_summary.csv"),
              _write_csv(resp, out / "response_by_variation.csv"),

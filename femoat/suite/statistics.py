@@ -15,7 +15,9 @@ import pandas as pd
 
 from femoat.suite import policies
 
-RECORD_KEYS = ("record_set", "record_id", "component")
+RECORD_KEYS = ("record_set", "record_id", "component", "angle")
+"""The columns that name a record (a plan suite's: a pair at one angle, each angle a record of
+its own in the fragility and the statistics)."""
 LEVEL_DIGITS = 4  # stripes: IMs equal to 4 significant digits are one level
 NEAREST = np.log(1.25)  # hunt-and-fill IDA: a record's run within ±25 % of a level stands for it
 
@@ -29,9 +31,9 @@ def _largest(t, name, pattern):
 
 METRICS = {  # name: (unit, value per run)
     "peak_impact_force": ("kip", lambda t: _largest(
-        t, "peak_impact_force", r"^peak_impact_force_(pos|neg)$")),
+        t, "peak_impact_force", r"^peak_impact_force_(pos|neg|px|mx|py|my)$")),
     "peak_wall_displacement": ("in", lambda t: _largest(
-        t, "peak_wall_displacement", r"^peak_wall_displacement_(pos|neg)$")),
+        t, "peak_wall_displacement", r"^peak_wall_displacement_(pos|neg|px|mx|py|my)$")),
     "peak_base_displacement": ("in", lambda t: t["peak_base_displacement"].abs()),
     "peak_drift_ratio": ("-", lambda t: t["peak_drift_ratio"].abs()),
     "peak_floor_acceleration": ("g", lambda t: _largest(
@@ -123,14 +125,23 @@ def runs_at_levels(t, ida=False, levels=None):
     return out
 
 
+def walls(table):
+    """The wall keys of a run table, in column order: pos, neg (1D) or px, mx, py, my (plan)."""
+    return [c[len("impacts_"):] for c in table.columns if c.startswith("impacts_")]
+
+
 def response_row(rows):
-    """Counts, pounding probability and, over the runs that did not collapse, the median and
+    """Counts, pounding probability (any wall, then each wall of :func:`walls`: the fraction of
+    the runs with an impact on it) and, over the runs that did not collapse, the median and
     lognormal dispersion (std of ln over the positive values, ddof 1) of each metric."""
     alive = rows[~rows["collapse"]]
     pounding = (rows["pounding"].fillna(False).astype(bool) if "pounding" in rows
                 else rows[["impacts_pos", "impacts_neg"]].fillna(0).sum(axis=1) > 0)
     row = {"n_records": len(rows), "n_collapsed": int(rows["collapse"].sum()),
            "n_not_collapsed": len(alive), "pounding probability [-]": float(pounding.mean())}
+    for w in walls(rows):
+        row[f"pounding probability, wall {w} [-]"] = float(
+            (rows[f"impacts_{w}"].fillna(0).to_numpy(float) > 0).mean())
     for name, (unit, value) in METRICS.items():
         v = value(alive).to_numpy(float) if len(alive) else np.array([])
         v = v[np.isfinite(v)]

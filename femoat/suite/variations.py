@@ -2,7 +2,8 @@
 
 ``"walls.law" = ["E", "V"]`` and ``"walls.gap" = [3, 4]`` make four variations. A key is
 ``table.key`` or ``table.subtable.key`` of the model tables of a scenario file (``building``,
-``building.story``, ``building.isolator``, ``walls``, ``walls.fe``, ``solver``, ``collapse``);
+``building.story``, ``building.isolator``, ``walls``, ``walls.fe``, ``solver``, ``collapse``; a plan suite's
+``moat``, ``moat.+x`` (one wall: ``"moat.+x.gap"``), ``moat.fe``, ``building.story_y``);
 anything else is rejected by name before any run starts.
 """
 
@@ -10,7 +11,7 @@ import copy
 import dataclasses
 import itertools
 
-MODEL_TABLES = ("building", "walls", "solver", "collapse")
+MODEL_TABLES = ("building", "walls", "moat", "solver", "collapse")
 
 
 def allowed_keys():
@@ -19,9 +20,14 @@ def allowed_keys():
     from femoat.scenario.building import STORY_MODELS
     from femoat.structure.materials import FrictionPendulum
 
-    known = {k: set(v) for k, v in scenario.KEYS.items() if k.split(".")[0] in MODEL_TABLES}
+    known = {}
+    for keys in (scenario.KEYS, scenario.PLAN_KEYS):
+        for table, names in keys.items():
+            if table.split(".")[0] in MODEL_TABLES:
+                known.setdefault(table.replace('"', ""), set()).update(names)
     known["building.story"] = {f.name for m in STORY_MODELS.values()
                                for f in dataclasses.fields(m)} | {"k0"}
+    known["building.story_y"] = known["building.story"]
     known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}
     return known
 
