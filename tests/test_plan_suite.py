@@ -158,7 +158,8 @@ def test_p695_scales_a_pair_as_a_suite_of_its_components(tmp_path):
 @pytest.fixture(scope="module")
 def plan_table(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("plan_suite")
-    suite = load_suite(_write(tmp, extra='[variations]\n"moat.law" = ["H", "E"]\n'))
+    suite = load_suite(_write(tmp, scaling='method = "pga"\ntargets = [1.0]', gap=1.0,
+                              extra='[variations]\n"moat.law" = ["H", "E"]\n'))
     run_suite(suite, tmp / "out", serial=True, stream=io.StringIO())
     return suite, load_table(tmp / "out"), tmp / "out"
 
@@ -176,15 +177,15 @@ def test_plan_suite_rows_equal_single_plan_runs(plan_table):
         ref = suite.records[[r.label for r in suite.records].index(row["record"])]
         pair = fema_p695_pair("farfield", int(ref.record_id), angle=ref.angle)
         # the suite's motion: the first 3 s of each component, x the factor that brings the
-        # pair's geometric-mean PGA to 0.4 g, time x 0.5
+        # pair's geometric-mean PGA to 1.0 g, time x 0.5
         n = int(round(3.0 / pair.dt)) + 1
         from femoat.ground_motions import GroundMotion
         from femoat.ground_motions.pair import RecordPair
 
         comps = [GroundMotion(m.accel_g[:n], m.dt).scaled(row["scale_factor"]).time_scaled(0.5)
                  for m in (pair.x, pair.y)]
-        assert math.sqrt(comps[0].pga * comps[1].pga) == pytest.approx(0.4, rel=1e-12)
-        assert row["pga"] == pytest.approx(0.4, rel=1e-12)
+        assert math.sqrt(comps[0].pga * comps[1].pga) == pytest.approx(1.0, rel=1e-12)
+        assert row["pga"] == pytest.approx(1.0, rel=1e-12)
         v = _variation(suite, 0)
         r = run(v.pounding, RecordPair(*comps, angle=ref.angle), v.integrator, extra_time=1.0,
                 collapse=v.criteria)
@@ -205,7 +206,7 @@ def test_plan_suite_rows_equal_single_plan_runs(plan_table):
 
 
 def test_plan_suite_pounds_and_its_report_gives_pounding_per_wall(plan_table):
-    """A 2 in gap at 0.4 g pounds; the report's pounding probability per wall is the fraction
+    """A 1 in gap at 1.0 g pounds; the report's pounding probability per wall is the fraction
     of records with an impact on that wall, counted here from the table."""
     import pandas as pd
 
@@ -222,3 +223,27 @@ def test_plan_suite_pounds_and_its_report_gives_pounding_per_wall(plan_table):
             expected = float((rows[f"impacts_{w}"] > 0).mean())
             assert got[f"pounding probability, wall {w} [-]"] == pytest.approx(expected, abs=1e-3)
         assert got["pounding probability [-]"] == pytest.approx(rows["pounding"].mean(), abs=1e-3)
+
+
+def test_hunt_and_fill_traces_each_pair_at_each_angle(tmp_path):
+    """IDA by hunt-and-fill on the pairs' PGA, a 10 in moat (no pounding below ~1.6 g: the base
+    mat stays within 4.7 in at 0.8 g), the isolator's capacity in plan (7 in, [building]
+    default) as the collapse criterion: each (pair, angle) traces its own curve, and on it every
+    intensity that collapsed lies above every one that survived (the bracket a trace closes)."""
+    scaling = ('method = "ida"\nim = "pga"\nhunt_fill = true\nstep0 = 0.4\n'
+               'step_increment = 0.4\nresolution = 0.2\nmax_runs = 6')
+    path = _write(tmp_path, records='set = "farfield"\nids = [1]\npairs = true\n'
+                                    'angles = [0, 30]', scaling=scaling, gap=10.0,
+                  extra="[collapse]\nisolator = true\n")
+    suite = load_suite(path)
+    run_suite(suite, tmp_path / "out", serial=True, stream=io.StringIO())
+    table = load_table(tmp_path / "out")
+    assert set(table["record"]) == {"farfield/1@0", "farfield/1@30"}
+    for _, curve in table.groupby("record"):
+        assert 3 <= len(curve) <= 6
+        gone = curve.loc[curve["collapsed"], "im"]
+        kept = curve.loc[~curve["collapsed"], "im"]
+        assert len(gone) and len(kept)  # the curve was bracketed
+        assert gone.min() > kept.max() and gone.min() - kept.max() <= 0.2 + 1e-9
+        assert curve.loc[curve["collapsed"], "collapse_isolator"].all()
+        assert (curve.loc[curve["collapsed"], "peak_base_displacement"] >= 7.0 - 1e-9).all()
