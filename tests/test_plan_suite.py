@@ -247,3 +247,27 @@ def test_hunt_and_fill_traces_each_pair_at_each_angle(tmp_path):
         assert gone.min() > kept.max() and gone.min() - kept.max() <= 0.2 + 1e-9
         assert curve.loc[curve["collapsed"], "collapse_isolator"].all()
         assert (curve.loc[curve["collapsed"], "peak_base_displacement"] >= 7.0 - 1e-9).all()
+
+
+def test_plan_tables_export_to_xarray_and_to_a_two_direction_demand_file(plan_table, tmp_path):
+    """pelicun's demand file of a plan suite has directions 1 (x) and 2 (y): PID-k-d is story k's
+    peak drift ratio along that axis, PFA-(k+1)-d the floor above it; the xarray export is
+    indexed by pair@angle."""
+    import pandas as pd
+
+    from femoat.suite import to_demand_csv, to_xarray
+
+    suite, table, _ = plan_table
+    path = to_demand_csv(table, tmp_path / "demand.csv")
+    demand = pd.read_csv(path, index_col=0).drop(index="Units").astype(float)
+    n = 3  # the paper building's stories
+    assert {f"PID-{k}-{d}" for k in range(1, n + 1) for d in (1, 2)} <= set(demand.columns)
+    for k in range(1, n + 1):
+        for d, axis in ((1, "x"), (2, "y")):
+            assert np.array_equal(demand[f"PID-{k}-{d}"].to_numpy(),
+                                  table[f"peak_drift_ratio_{axis}_{k}"].to_numpy(float))
+            assert np.array_equal(demand[f"PFA-{k + 1}-{d}"].to_numpy(),
+                                  table[f"peak_floor_acceleration_{axis}_{k}"].to_numpy(float))
+    ds = to_xarray(table)
+    assert set(ds["record"].values) == {r.label for r in suite.records}
+    assert ds["peak_base_displacement"].attrs["units"] == "in"
