@@ -56,10 +56,10 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         Histories to record (see :data:`femoat.integration.solve.CHANNELS`); None records all.
         Decimate the open phase with ``Integrator(record_every=k)``.
     history : bool
-        False keeps no history (what a suite does): the peaks, the impact table, the energy
-        balance, collapse and runaway are all kept inside the compiled loop and are the same
-        as with a history; the result's history arrays have no rows (``channels`` must then
-        be None).
+        False keeps no history (what a suite does; a plan run too): the peaks, the impact
+        table, the energy balance, collapse and runaway are all kept inside the compiled loop
+        and are the same as with a history; the result's history arrays have no rows and its
+        history accessors raise (``channels`` must then be None).
     backend : str
         Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
         "aot" (see :mod:`femoat.compilation.aot`); the results are identical.
@@ -73,6 +73,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     the bound and the time. A record that would outgrow ``integrator.record_budget`` raises
     :class:`~femoat.integration.solve.RecordBudgetError`.
     """
+    if channels is not None and not history:
+        raise ValueError("channels names the histories to record; with history=False none "
+                         "is recorded: leave channels at None.")
     if isinstance(model, PlanModel):
         return _run_plan(model, motion, integrator, extra_time, duration, u0, v0, progress,
                          channels, backend, collapse, history)
@@ -85,9 +88,6 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         duration = motion.duration + extra_time
     integ = integrator or Integrator()
     packed = packed_model(model)
-    if channels is not None and not history:
-        raise ValueError("channels names the histories to record; with history=False none "
-                         "is recorded: leave channels at None.")
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
@@ -103,9 +103,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
 
 
 PLAN_METHOD = "newmark"
-"""The default method of a plan run: every peak within 1e-3 of a converged run at its default
-rtol (measured on a FEMA pair with impacts on all four walls, 8e-4); the fifth-order open phase
-is refused on a plan friction pendulum (:func:`femoat.integration.solve.integrate` says why)."""
+"""The default method of a plan run: the fifth-order open phase is refused on a plan friction
+pendulum (:func:`femoat.integration.solve.integrate` says why). Its accuracy at the default rtol
+against a converged run is measured by ``benchmarks/plan_speed.py``."""
 
 
 def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels, backend,
@@ -115,9 +115,6 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
         raise ValueError("a PlanModel runs under a RecordPair (femoat.ground_motions.pair: "
                          "fema_p695_pair, read_at2_pair or RecordPair(x, y, angle)); for one "
                          "component, RecordPair(x, zeros) or the 1D model model.along('x').")
-    if not history:
-        raise ValueError("a plan run keeps its history (its peaks are read from it): "
-                         "run with history=True.")
     if duration is None:
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
@@ -128,7 +125,7 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
                  u0=u0, v0=v0, progress=progress, backend=backend, limits=limits,
-                 stop_at_limit=stop, **kw)
+                 history=history, stop_at_limit=stop, **kw)
     arrays = dict(hist.arrays)
     arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))
     info = dict(motion=pair.name, angle=float(pair.angle), scale=float(pair.scale),
@@ -137,7 +134,8 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     meta = dict(impacts=impact_rows(hist.impacts, packed.c_names), stats=hist.stats,
                 energy=hist.energy, info=info)
     meta.update(_limit_summaries(limits, hist, packed, collapse))
-    return PlanRunResult.from_arrays(arrays, packed, meta)
+    return PlanRunResult.from_arrays(arrays, packed, meta,
+                                     running_peaks=None if history else hist.peaks)
 
 
 def _limits(model, packed, collapse):

@@ -118,3 +118,31 @@ def test_plan_animation_flashes_the_wall_in_contact(tmp_path, render_backend, hi
     for frame in (0, 9, 20):
         c = rgb(frame, info["mat"])
         assert c[2] > c[0] + 60
+
+
+def test_femoat_render_run_draws_a_plan_run_in_top_view(tmp_path, render_backend):
+    """``femoat render run run.npz`` on a plan run's file (femoat's own plan solver) writes the
+    top view: as many frames as the plan decimation gives for the run (1.5 s at 10 fps over
+    0..1.4 s: 15), not the 1D animation (which would refuse the file)."""
+    from femoat.ground_motions.pair import fema_p695_pair
+    from femoat.run import run
+    from femoat.scenario import defaults, model_from_dict
+
+    model = model_from_dict(defaults(plan=True))
+    result = run(model, fema_p695_pair("farfield", 1, scale=3.0), duration=1.5)
+    result.save(tmp_path / "run.npz")
+    frames = plan_frames(PlanHistory.from_result(result), fps=10, end=1.4)
+    assert len(frames["time"]) == 15
+    script = textwrap.dedent("""
+        import sys
+        from femoat.cli import main
+        sys.exit(main(["render", "run", "run.npz", "--gif", "plan.gif", "--fps", "10",
+                       "--end", "1.4", "--size", "200x200"]))
+    """)
+    done = run_python(script, tmp_path)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert "(15 frames)" in done.stdout
+    from PIL import Image
+
+    gif = Image.open(tmp_path / "plan.gif")
+    assert gif.n_frames == 15 and gif.size == (200, 200)

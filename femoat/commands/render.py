@@ -4,6 +4,7 @@
     femoat render wall meshes/concrete_wall.vtu --scenario my.toml --save-run run.npz
     femoat render run run.npz --gif run.gif --speed 0.5 --start 1.5 --end 3
     femoat render run studies/scenarios/paper_concrete_H.toml --gif run.gif
+    femoat render run examples/plan_building.toml --gif plan.gif   (a plan run: the top view)
 
 ``render wall`` builds a modal wall from the finite-element wall (N from the flexibility target
 and the contact time of the base mat on the wall, or ``--modes``), runs the building with it on
@@ -67,7 +68,7 @@ def add_parser(sub):
 
     r = what.add_parser(
         "run", help="animated GIF of a building run: base mat, floors, both walls",
-        description="Animate a run (a run.npz written by 'femoat run' or 'femoat render wall "
+        description="Animate a run (a plan run in top view; a run.npz written by 'femoat run' or 'femoat render wall "
         "--save-run', or a scenario TOML that is run first). Only the frames shown are computed.")
     r.add_argument("source", type=Path, help="run .npz or scenario .toml")
     r.add_argument("--gif", type=Path, default=None,
@@ -154,10 +155,39 @@ def _render_wall(args):
     return 0
 
 
-def _render_run(args):
-    from femoat.render.animation import animate_run
+def _load_run(path):
+    """A saved run: a plan run's file (it holds the bidirectional bearing's force) as a
+    :class:`~femoat.plan.results.PlanRunResult`, any other as a RunResult."""
+    import numpy as np
+
+    from femoat.plan.results import PlanRunResult
     from femoat.results import RunResult
 
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            plan = "bearing_force" in z.files
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"{path}: not a femoat result file ({exc}).") from None
+    return (PlanRunResult if plan else RunResult).load(path)
+
+
+def _animate(result, gif, args):
+    """The 1D animation of a RunResult, the top view of a plan run (walls flashing on impact)."""
+    from femoat.plan.results import PlanRunResult
+
+    kw = dict(fps=args.fps, speed=args.speed, start=args.start, end=args.end, scale=args.scale,
+              window_size=_size(args.size), max_frames=args.max_frames)
+    if isinstance(result, PlanRunResult):
+        from femoat.plotting.plan_history import PlanHistory
+        from femoat.render.plan import animate_plan
+
+        return animate_plan(PlanHistory.from_result(result), gif, **kw)
+    from femoat.render.animation import animate_run
+
+    return animate_run(result, gif, **kw)
+
+
+def _render_run(args):
     source = args.source
     gif = args.gif or Path("femoat_output") / f"{source.stem}.gif"
     if gif.suffix.lower() != ".gif":
@@ -165,7 +195,7 @@ def _render_run(args):
     if not source.is_file():
         raise ValueError(f"{source} does not exist: give a run .npz or a scenario .toml")
     if source.suffix.lower() == ".npz":
-        result = RunResult.load(source)
+        result = _load_run(source)
     elif source.suffix.lower() == ".toml":
         from femoat.run import run as run_model
         from femoat.scenario import load_scenario
@@ -177,9 +207,7 @@ def _render_run(args):
             print(f"wrote {args.save_run}")
     else:
         raise ValueError(f"{source}: give a run .npz (femoat run) or a scenario .toml")
-    path, n = animate_run(result, gif, fps=args.fps, speed=args.speed, start=args.start,
-                          end=args.end, scale=args.scale, window_size=_size(args.size),
-                          max_frames=args.max_frames)
+    path, n = _animate(result, gif, args)
     print(f"wrote {path} ({n} frames)")
     return 0
 

@@ -129,7 +129,10 @@ def run(args):
                 f"{n * len(suite.scaling.levels)} runs")
         smt = "-" if suite.scaling.smt is None else f"{suite.scaling.smt:.4g} g"
         period = "-" if suite.scaling.period is None else f"{suite.scaling.period:g} s"
-        print(f"suite {suite.hash}: {len(suite.records)} records x {len(suite.combos)} "
+        records = (f"{len(suite.records)} records" if not suite.plan else
+                   f"{len({r.pair_label for r in suite.records})} record pairs x "
+                   f"{len({r.angle for r in suite.records})} angles (a building in plan)")
+        print(f"suite {suite.hash}: {records} x {len(suite.combos)} "
               f"variations: {what}; S_MT = {smt}, period (prototype) = {period}, "
               f"time_scale = {suite.time_scale:g} [-]")
         if (out / "suite.json").is_file():

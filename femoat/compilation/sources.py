@@ -25,7 +25,7 @@ from femoat.atomic import write_text
 PACKAGE = Path(__file__).resolve().parents[1]
 """femoat's package folder (the default root of every scope)."""
 
-KERNELS = ("checks.py", "compilation/jit.py", "contact", "integration", "plan",
+KERNELS = ("checks.py", "compilation/jit.py", "contact", "integration", "plan/bearing.py",
            "structure/materials", "units.py")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 

@@ -14,10 +14,14 @@ displacements and velocities (:mod:`femoat.dense_peaks`); the base mat's plan di
 |u| = |(u_x, u_y)| from the same interpolant in both directions at once
 (:func:`hermite_norm_max`), not the larger of the two directions' peaks (those are reached at
 different times). Accelerations at the samples, and inside the fifth-order steps of a ``dp5``
-run from the quintic interpolant. The plan figures and the top-view render read a result through
-:meth:`femoat.plotting.plan_history.PlanHistory.from_result` (figures are a higher layer than
-results: tests/test_imports.py). Files: ``.npz`` with a JSON ``meta``, as
-:class:`femoat.results.RunResult`.
+run from the quintic interpolant. A run that kept no history (``run(..., history=False)``, what
+a suite does) has arrays of no rows: its peaks are the solver's running peaks
+(:mod:`femoat.integration.recording.peaks`: the same interpolants evaluated inside the loop, the
+plan crest by Newton from 16 points of each interval rather than the roots of its degree-5
+polynomial), and its history accessors raise. The plan figures and the top-view render read a
+result through :meth:`femoat.plotting.plan_history.PlanHistory.from_result` (figures are a
+higher layer than results: tests/test_imports.py). Files: ``.npz`` with a JSON ``meta``, as
+:class:`femoat.results.RunResult` (a run without history too: its arrays have no rows).
 """
 
 import json
@@ -27,6 +31,7 @@ import numpy as np
 
 from femoat.atomic import atomic_path
 from femoat.dense_peaks import hermite_abs_max, quintic_accel_abs_max
+from femoat.integration.recording import peaks as running_layout
 from femoat.plan.building import AXES
 from femoat.plan.moat import SIDES, wall_side
 from femoat.units import G
@@ -131,7 +136,7 @@ class PlanRunResult:
 
     # ---- construction -------------------------------------------------------------------
     @classmethod
-    def from_arrays(cls, arrays, packed, meta):
+    def from_arrays(cls, arrays, packed, meta, running_peaks=None):
         """Assemble from a plan solver's recorded arrays.
 
         Parameters
@@ -151,10 +156,18 @@ class PlanRunResult:
             the model), ``stats`` (with ``steps`` and ``cpu_seconds``), ``energy`` (with
             ``residual``, or None when the run kept no balance) and ``info``; other keys
             (``collapse``, ``runaway``, ...) are kept as given.
+        running_peaks : array or None
+            The solver's running peaks (``History.peaks``, the layout of
+            :mod:`femoat.integration.recording.peaks`) of a run that kept no history: the peaks
+            are read from them, and the arrays have no rows (m = 0). None: the peaks are read
+            from the arrays, which then hold at least one sample.
         """
         lay = packed.layout
         names = [wall_side(s) for s in packed.c_names]
-        arrays = _checked_arrays(arrays, lay.n, len(packed.el_roles), len(names))
+        arrays = _checked_arrays(arrays, lay.n, len(packed.el_roles), len(names),
+                                 history=running_peaks is None)
+        if running_peaks is not None:
+            running_peaks = _checked_running(running_peaks, lay.n_struct, len(names))
         meta = _checked_meta(meta, names)
         walls = []
         for c, cols in enumerate(lay.wall_dofs):
@@ -174,7 +187,7 @@ class PlanRunResult:
             units=ARRAY_UNITS,
         )
         r = cls(**arrays, meta=meta)
-        r.meta["peaks"] = r._peaks()
+        r.meta["peaks"] = r._peaks(running_peaks)
         return r
 
     @classmethod
@@ -250,6 +263,10 @@ class PlanRunResult:
         return list(self.meta["contact_names"])
 
     def _require(self, name):
+        if self.time.size == 0:
+            raise ValueError("the run kept no history (history=False): its peaks and impacts "
+                             "are in result.peaks and result.impacts; run with history=True "
+                             "for its histories.")
         if getattr(self, name).shape[1] == 0:
             raise ValueError(f"the {name} channel was not recorded: run with it recorded.")
 
@@ -260,11 +277,13 @@ class PlanRunResult:
     def floor_displacement(self, axis):
         """Displacements of the base mat and the floors along ``axis`` ("x" or "y") relative to
         the ground [in], columns base, floor 1, ..."""
+        self._require("displacement")
         return self.displacement[:, self._cols(axis)]
 
     @property
     def base_displacement(self):
         """The base mat's displacement (x, y) relative to the ground [in], shape (m, 2)."""
+        self._require("displacement")
         return self.displacement[:, self.meta["floor_dofs"][0]]
 
     @property
@@ -292,6 +311,7 @@ class PlanRunResult:
 
     def _wall_columns(self, values, side):
         """Σ over a wall's modes of φ·values[:, mode] per wall, or one wall's column."""
+        self._require("displacement")
         out = np.zeros((self.time.size, len(self.meta["walls"])))
         for c, w in enumerate(self.meta["walls"]):
             for col, phi in zip(w["cols"], w["phi"]):
@@ -348,30 +368,57 @@ class PlanRunResult:
                                      self.ground_acceleration[:, _axis(axis)],
                                      open_now[:-1] & open_now[1:])
 
-    def _peaks(self):
-        """The peak summary (:attr:`peaks`)."""
+    def _continuous(self, running=None):
+        """The peaks of the continuous solution: {"plan": the base mat's |u| [in], "base": its
+        |u_x|, |u_y| [in], "drift": {axis: per story [in]}, "acceleration": {axis: absolute,
+        base mat then floors [in/s²], or None when not recorded}, "wall": per wall [in]}. From
+        the solver's running peaks ``running`` when given, else from the recorded arrays."""
+        floors = self.meta["floor_dofs"]
+        if running is not None:  # the layout of femoat.integration.recording.peaks
+            ns, nc = 2 * len(floors), len(self.sides)
+            pk = [float(x) for x in running]
+            return dict(
+                plan=pk[2 * ns + nc + 2],
+                base=[pk[i] for i in floors[0]],
+                drift={axis: [pk[row[a]] for row in floors[1:]] for a, axis in enumerate(AXES)},
+                acceleration={axis: [pk[ns + nc + row[a]] for row in floors]
+                              for a, axis in enumerate(AXES)},
+                wall=pk[ns:ns + nc])
         has_v = self.velocity.shape[1] > 0
         base = self.base_displacement
         base_v = self.base_velocity if has_v else None
-        out = {"peak_plan_base_displacement": (
-            hermite_norm_max(self.time, base, base_v) if has_v
-            else float(self.plan_base_displacement.max(initial=0.0)))}
-        for a, axis in enumerate(AXES):
-            out[f"peak_base_displacement_{axis}"] = self._hermite(
-                base[:, a:a + 1], None if base_v is None else base_v[:, a:a + 1])[0]
-        heights = self.meta["story_heights"]
+        drift = {}
         for axis in AXES:
             drift_v = np.diff(self.velocity[:, self._cols(axis)], axis=1) if has_v else None
-            drift = self._hermite(self.story_drifts(axis), drift_v)
+            drift[axis] = self._hermite(self.story_drifts(axis), drift_v)
+        return dict(
+            plan=(hermite_norm_max(self.time, base, base_v) if has_v
+                  else float(self.plan_base_displacement.max(initial=0.0))),
+            base=[self._hermite(base[:, a:a + 1],
+                                None if base_v is None else base_v[:, a:a + 1])[0]
+                  for a in range(len(AXES))],
+            drift=drift,
+            acceleration={axis: (self._acceleration_peaks(axis) if self.acceleration.shape[1]
+                                 else None) for axis in AXES},
+            wall=self._hermite(self.wall_displacement(), self.wall_velocity() if has_v else None))
+
+    def _peaks(self, running=None):
+        """The peak summary (:attr:`peaks`), from the running peaks ``running`` when given
+        (:meth:`_continuous`)."""
+        peak = self._continuous(running)
+        out = {"peak_plan_base_displacement": peak["plan"]}
+        for a, axis in enumerate(AXES):
+            out[f"peak_base_displacement_{axis}"] = peak["base"][a]
+        heights = self.meta["story_heights"]
+        for axis in AXES:
+            drift = peak["drift"][axis]
             out[f"peak_drift_{axis}"] = drift
             out[f"peak_drift_ratio_{axis}"] = [d / h for d, h in zip(drift, heights)]
         for axis in AXES:
-            acc = self._acceleration_peaks(axis) if self.acceleration.shape[1] else None
+            acc = peak["acceleration"][axis]
             out[f"peak_base_acceleration_{axis}"] = None if acc is None else acc[0] / G
             out[f"peak_floor_acceleration_{axis}"] = (None if acc is None
                                                       else [x / G for x in acc[1:]])
-        walls = self._hermite(self.wall_displacement(),
-                              self.wall_velocity() if has_v else None)
         imp = self.meta["impacts"]
         for side in SIDES:  # the same keys for every moat: None where there is no wall
             key = SIDE_KEYS[side]
@@ -380,7 +427,7 @@ class PlanRunResult:
             out[f"peak_impact_force_{key}"] = (max((r["peak_force"] for r in rows), default=0.0)
                                                if here else None)
             out[f"impacts_{key}"] = len(rows) if here else None
-            out[f"peak_wall_displacement_{key}"] = (walls[self.sides.index(side)] if here
+            out[f"peak_wall_displacement_{key}"] = (peak["wall"][self.sides.index(side)] if here
                                                     else None)
         out.update(
             peak_impact_force=max((r["peak_force"] for r in imp), default=0.0),
@@ -457,9 +504,10 @@ def _newmark_rate(x, rate0, h):
     return w * np.where(np.arange(x.shape[0]) % 2 == 1, -1.0, 1.0)[:, None]
 
 
-def _checked_arrays(arrays, n, n_elements, n_walls):
+def _checked_arrays(arrays, n, n_elements, n_walls, history=True):
     """The arrays as float (``contact_closed`` int8) numpy arrays of the expected shapes, or a
-    ValueError naming the array."""
+    ValueError naming the array; ``history``: at least one sample, else none (a run that kept
+    no history)."""
     if not isinstance(arrays, dict):
         raise ValueError("arrays must be a dict of numpy arrays named as "
                          "femoat.plan.results.ARRAY_UNITS.")
@@ -479,8 +527,13 @@ def _checked_arrays(arrays, n, n_elements, n_walls):
     if t.ndim != 1 or np.any(np.diff(t) < 0) or not np.all(np.isfinite(t)):
         raise ValueError(f"arrays['time'] must be a 1-D array of finite, non-decreasing times "
                          f"[s] (got shape {t.shape}).")
-    if t.size == 0:
-        raise ValueError("arrays['time'] is empty: a plan result needs at least one sample.")
+    if history and t.size == 0:
+        raise ValueError("arrays['time'] is empty: a plan result needs at least one sample "
+                         "(or, for a run that kept no history, its running_peaks).")
+    if not history and t.size:
+        raise ValueError(f"arrays['time'] has {t.size} samples: with running_peaks (a run that "
+                         "kept no history) the arrays have no rows; give running_peaks=None "
+                         "to read the peaks from the samples.")
     out, m = {"time": t}, t.size
     for name, cols in width.items():
         dtype = np.int8 if name == "contact_closed" else float
@@ -498,6 +551,21 @@ def _checked_arrays(arrays, n, n_elements, n_walls):
             raise ValueError(f"arrays[{name!r}] holds values that are not finite (NaN or inf).")
         out[name] = a
     return out
+
+
+def _checked_running(running, ns, nc):
+    """The running peaks as a float array of the layout's length for ns building DOFs and nc
+    walls, or a ValueError naming ``running_peaks``."""
+    want = running_layout.size(ns, nc)
+    try:
+        pk = np.asarray(running, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError("running_peaks must be an array of numbers (History.peaks).") from None
+    if pk.shape != (want,) or not np.all(np.isfinite(pk)):
+        raise ValueError(f"running_peaks has shape {pk.shape}; it must be ({want},) finite "
+                         "values, the layout of femoat.integration.recording.peaks for this "
+                         "model (the History.peaks of its run).")
+    return pk
 
 
 def _checked_meta(meta, sides):

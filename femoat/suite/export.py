@@ -44,7 +44,9 @@ def to_demand_csv(df, path, n_stories=None):
     Columns ``type-location-direction`` with pelicun's (FEMA P-58) numbering, location 0 being
     the ground: ``PFA-0-1`` the PGA of the record as applied [g], ``PFA-1-1`` the base mat (the
     floor slab above the isolators) [g], ``PFA-{k+1}-1`` the floor on top of story k [g] and
-    ``PID-k-1`` the peak drift ratio of story k [rad] (story k spans floors k and k+1). The
+    ``PID-k-1`` the peak drift ratio of story k [rad] (story k spans floors k and k+1); a plan
+    suite's table gives direction 1 (x) and 2 (y) of each, its ground PFA the pair's
+    geometric-mean PGA as applied in both (the table holds no PGA per direction). The
     second row holds the units (``Units,g,...,rad``); the index is the run_id. Filter ``df`` to
     one stripe (intensity, variation) and to the runs that did not collapse first
     (``df[~df.collapsed & (df.status == "ok")]``): pelicun reads one sample per hazard level and
@@ -58,11 +60,19 @@ def to_demand_csv(df, path, n_stories=None):
     if n_stories is None:
         n_stories = max((int(c.rsplit("_", 1)[1]) for c in df.columns
                          if c.startswith("peak_drift_ratio_")), default=0)
-    cols = {"PFA-0-1": df["pga"], "PFA-1-1": df["peak_base_acceleration"]}
+    plan = "peak_drift_ratio_x_1" in df.columns or "peak_base_acceleration_x" in df.columns
+    axes = {"1": "_x", "2": "_y"} if plan else {"1": ""}
+    cols = {}
+    for d, a in axes.items():  # the ground: the pair's geometric-mean PGA in both directions
+        cols[f"PFA-0-{d}"] = df["pga"]
+    for d, a in axes.items():
+        cols[f"PFA-1-{d}"] = df[f"peak_base_acceleration{a}"]
     for k in range(1, n_stories + 1):
-        cols[f"PFA-{k + 1}-1"] = df[f"peak_floor_acceleration_{k}"]
+        for d, a in axes.items():
+            cols[f"PFA-{k + 1}-{d}"] = df[f"peak_floor_acceleration{a}_{k}"]
     for k in range(1, n_stories + 1):
-        cols[f"PID-{k}-1"] = df[f"peak_drift_ratio_{k}"]
+        for d, a in axes.items():
+            cols[f"PID-{k}-{d}"] = df[f"peak_drift_ratio{a}_{k}"]
     units = {c: ("rad" if c.startswith("PID") else "g") for c in cols}
     demand = pd.DataFrame(cols)
     demand.index = df["run_id"].to_numpy()

@@ -8,8 +8,9 @@ Entry points: :func:`run_report` (the run table of ``DIR``, read by
 verdict of :mod:`femoat.suite.verdict`).
 
 Run-table columns used: status, collapsed, im [g], im_kind, record_set/record_id/component (a
-record), the varied keys (``meta["varied"]``), pounding, peak_impact_force_pos/neg [kip],
-peak_wall_displacement_pos/neg [in], peak_base_displacement [in], peak_drift_ratio [-],
+record; a plan suite's: and angle), the varied keys (``meta["varied"]``), pounding,
+impacts_<wall>, peak_impact_force_<wall> [kip], peak_wall_displacement_<wall> [in] (walls pos,
+neg or px, mx, py, my), peak_base_displacement [in], peak_drift_ratio [-],
 peak_floor_acceleration_<k> [g]. Meta keys used: varied, variations, definition, period [s],
 sdc, record_set, scaling ("ida" | "p695" | "pga"), im_kind, hunt_fill, solver_failure,
 time_scale. The P695 inputs (SDC, μT, quality ratings or β_TOT) come from the options, the
