@@ -6,7 +6,7 @@ import sys
 
 # Subcommand modules, each with ``add_parser(subparsers)`` and ``run(args) -> int``.
 COMMANDS = ["impact", "contact_curves", "run", "paper", "wall", "render", "opensees", "compile",
-            "suite"]
+            "suite", "study"]
 
 
 def build_parser():

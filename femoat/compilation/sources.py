@@ -9,7 +9,7 @@ version (:func:`femoat.suite.definition.code_version`). Two scopes:
   kernels and reads their constants (option slots, law and material codes, bundles), plus the
   compile options in :mod:`femoat.compilation.jit`.
 * ``"results"``: everything that can change a run's result: the package but the command line,
-  plotting, rendering, OpenSees and the suite machinery besides its run path.
+  plotting, rendering, OpenSees, the studies and the suite machinery besides its run path.
 
 Nothing is read at import. :func:`fingerprint` reads a scope's files once per process, when first
 asked; given a memo folder it also keeps the value with the files' sizes and modification times,
@@ -29,8 +29,9 @@ KERNELS = ("checks.py", "compilation/jit.py", "contact", "integration", "plan/be
            "structure/materials", "units.py")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 
-NOT_RESULTS = ("commands", "plotting", "render", "opensees", "suite")
-"""Top-level parts of the package that cannot change a run's result ..."""
+NOT_RESULTS = ("commands", "plotting", "render", "opensees", "studies", "suite")
+"""Top-level parts of the package that cannot change a run's result (a study's suite
+definitions are in their suites' hashes, its tables read finished runs) ..."""
 
 SUITE_RUN_PATH = ("suite/columns.py", "suite/huntfill.py", "suite/model.py", "suite/records.py",
                   "suite/runs.py", "suite/scaling.py", "suite/variations.py")
