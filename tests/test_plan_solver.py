@@ -150,8 +150,21 @@ def test_dp5_is_refused_on_a_plan_friction_pendulum(pair_and_model):
 
 
 @pytest.mark.opensees
-def test_against_the_opensees_twin_in_3d(pair_and_model):
+def _second_pair():
+    """FEMA P695 far-field pair 6 (Imperial Valley, El Centro Array #11: another earthquake),
+    its first 8 s x 3, turned by 30°, in a steel moat with the Hertz (E) law and 2 in gaps: a
+    second record pair, wall and law; it hits all four walls (1, 1, 2, 2 impacts)."""
+    p = fema_p695_pair("farfield", 6)
+    x, y = first_seconds(p.x, 8.0, 3.0), first_seconds(p.y, 8.0, 3.0)
+    return RecordPair(x, y, angle=30.0), PlanModel(walls=rectangular_moat("steel", "E", gap=2.0))
+
+
+@pytest.mark.parametrize("which", ["ff1", "ff6"])
+def test_against_the_opensees_twin_in_3d(pair_and_model, which):
     opensees_or_skip()
+    duration = 6.5
+    if which == "ff6":
+        pair_and_model, duration = _second_pair(), 8.5
     # The OpenSees twin (flatSliderBearing + W/R springs, four Masroor chains) at fixed steps
     # of 1e-4 and 5e-5 s, extrapolated to zero step (its error is first order in the step: the
     # slider's radial return is a backward-Euler step of the friction rule); femoat at its
@@ -160,9 +173,10 @@ def test_against_the_opensees_twin_in_3d(pair_and_model):
     from femoat.opensees.plan import opensees_plan_run
 
     pair, model = pair_and_model
-    ours = run(model, pair, duration=6.5).peaks
-    coarse = opensees_plan_run(model, pair, 1e-4, duration=6.5)["peaks"]
-    fine = opensees_plan_run(model, pair, 5e-5, duration=6.5)["peaks"]
+    ours = run(model, pair, duration=duration).peaks
+    coarse = opensees_plan_run(model, pair, 1e-4, duration=duration)["peaks"]
+    fine = opensees_plan_run(model, pair, 5e-5, duration=duration)["peaks"]
+    assert all(ours[f"impacts_{s}"] > 0 for s in ("px", "mx", "py", "my"))  # every wall hit
 
     def extrapolated(key):
         return 2.0 * np.asarray(fine[key], dtype=float) - np.asarray(coarse[key], dtype=float)

@@ -271,3 +271,23 @@ def test_plan_tables_export_to_xarray_and_to_a_two_direction_demand_file(plan_ta
     ds = to_xarray(table)
     assert set(ds["record"].values) == {r.label for r in suite.records}
     assert ds["peak_base_displacement"].attrs["units"] == "in"
+
+
+def test_each_kind_of_suite_gets_its_own_columns_and_every_shared_one(tmp_path):
+    """A 1D suite's table has no plan-only column and every shared one (per story, per wall:
+    pos, neg); a plan suite's has every column but the 1D-only ones (walls px, mx, py, my)."""
+    from femoat.suite import columns as cols
+    from femoat.suite.definition import load_suite as load
+
+    one_d, plan = load(None), load_suite(_write(tmp_path))
+    for suite, other in ((one_d, "plan"), (plan, "1d")):
+        got = cols.fields(suite)
+        rows = {f.column.name for f in got}
+        expected = {c.name for c in cols.COLUMNS if c.models != other
+                    and (c.per != "key" or suite.varied)}  # no variation: no {key} column
+        assert rows == expected
+        assert len({f.name for f in got}) == len(got)  # no column twice
+        walls = {f.index for f in got if f.column.per == "wall"}
+        assert walls == set(suite.walls)
+        stories = [f.index for f in got if f.column.name == "peak_drift_ratio_{k}"]
+        assert stories == list(range(1, suite.n_stories + 1))

@@ -334,7 +334,7 @@ def fields(suite):
             for c in group:
                 dtype = c.dtype or _value_type([combo[index] for combo in suite.combos])
                 out.append(Field(c.name.format(**{placeholder: index}), dtype, c, index))
-        i += len(group)
+        i += len(_run_of(i))
     return out
 
 
