@@ -55,7 +55,7 @@ ANGLES = (0, 15, 30, 45, 60, 75)  # [deg] the distinct orientations, [0, 90) (mo
 CASES = {"1d": "1D", "2d_0": "2D 0 deg", "2d_worst": "2D worst"}
 """The table's cases: key (CSV) and label (markdown)."""
 
-QUICK = dict(ids=[1, 6, 12], duration=12.0, laws=("E", "H"))
+QUICK = {"ids": [1, 6, 12], "duration": 12.0, "laws": ("E", "H")}
 """The quick variant: three pairs, the first 12 s of each record (6 s of model time), two laws."""
 
 _BUILDING = {  # the paper building, stated (femoat.scenario.defaults()'s, Building()'s)
@@ -148,7 +148,7 @@ def _runs(table, prefix):
     return pd.DataFrame({
         "law": table[f"{prefix}.law"].astype(str), "wall": table[f"{prefix}.preset"].astype(str),
         "record": table["record_id"].astype(int),
-        "angle": table["angle"] if "angle" in table else 0.0,
+        "angle": table.get("angle", 0.0),
         "displacement": table["peak_base_displacement"].astype(float),
         "force": forces.astype(float).max(axis=1, skipna=True),
         "pounding": table["pounding"].fillna(False).astype(bool),
@@ -212,7 +212,7 @@ def to_markdown(table):
         lines.append("| " + " | ".join(cells) + " |")
     n = table.groupby("case")["records"].agg(["min", "max"])
     failed = int(table["failed runs"].sum())
-    lines += ["", f"u: median over the records of the peak base displacement (2D: in plan, |u|); "
+    lines += ["", "u: median over the records of the peak base displacement (2D: in plan, |u|); "
               "P: probability of pounding (the fraction of records that pounded); F: median "
               "peak impact force over the records that pounded (largest over the walls); "
               "collapsed: runs that reached a collapse criterion or a runaway bound / runs; "
@@ -229,4 +229,4 @@ def _span(row):
 
 
 def _fmt(x, digits):
-    return "-" if x != x else f"{x:.{digits}f}"
+    return "-" if np.isnan(x) else f"{x:.{digits}f}"
