@@ -48,7 +48,7 @@ def test_the_command_prints_and_writes_the_table(study):
     n = len(bd.QUICK["ids"])
     assert {k: list(v) for k, v in runs.items()} == {"1d": [2 * n], "2d_0": [n],
                                                      "2d_worst": [n * len(bd.ANGLES)]}
-    assert (out / "table.md").read_text(encoding="utf-8") in printed
+    assert (out / "table.markdown").read_text(encoding="utf-8") in printed
     for wall in walls:
         for law in laws:
             assert f"| {wall} | {law} |" in printed

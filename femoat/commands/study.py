@@ -16,7 +16,7 @@ def add_parser(sub):
         "study",
         help="run a study built on suites (bidirectional: 1D against 2D pounding at the MCE)",
         description="Run (or resume) a study's suites into OUT and print its table; the table "
-        "is also written to OUT/table.csv and OUT/table.md. Studies: "
+        "is also written to OUT/table.csv and OUT/table.markdown. Studies: "
         + "; ".join(f"{k}: {v}" for k, v in STUDIES.items()) + ".",
     )
     p.add_argument("name", choices=sorted(STUDIES), help="the study")
@@ -49,6 +49,7 @@ def run(args):
               "same command to resume", file=sys.stderr)
         return 130
     print(markdown, end="")
-    print(f"femoat study {args.name}: the table in {out / 'table.md'} and {out / 'table.csv'}; "
-          f"the run tables in {out / '1d'} and {out / '2d'} (femoat.suite.load_table)")
+    print(f"femoat study {args.name}: the table in {out / 'table.markdown'} and "
+          f"{out / 'table.csv'}; the run tables in {out / '1d'} and {out / '2d'} "
+          "(femoat.suite.load_table)")
     return 0

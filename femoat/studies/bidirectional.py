@@ -99,7 +99,7 @@ def definitions(quick=False):
 
 def run_study(out, quick=False, workers=None, serial=False, overwrite=False, stream=None):
     """Run (or resume) both suites into ``out/1d`` and ``out/2d``; write ``out/table.csv`` and
-    ``out/table.md``; return ``(table, markdown)``."""
+    ``out/table.markdown``; return ``(table, markdown)``."""
     from femoat.suite import load_table, run_suite, suite_from_dict
 
     stream = stream or sys.stderr
@@ -115,7 +115,7 @@ def run_study(out, quick=False, workers=None, serial=False, overwrite=False, str
     from femoat.atomic import write_text
 
     write_text(out / "table.csv", table.to_csv(index=False))
-    write_text(out / "table.md", markdown)
+    write_text(out / "table.markdown", markdown)
     return table, markdown
 
 
