@@ -174,6 +174,24 @@ def test_the_definitions_on_run_tables_built_by_hand():
     assert t.loc["2d_worst", "runs"] == 6
 
 
+def test_both_suites_model_the_paper_building_and_walls():
+    from femoat.paper import paper_model
+    from femoat.suite.model import build_variation
+    from femoat.suite.variations import MODEL_TABLES, apply
+
+    d = bd.definitions()
+    one_d = {k: v for k, v in d["1d"].items() if k in MODEL_TABLES}
+    two_d = {k: v for k, v in d["2d"].items() if k in MODEL_TABLES}
+    for wall in bd.WALLS:
+        for law in bd.LAWS:
+            paper = paper_model(wall, law)  # the paper's building between two walls, 4 in gaps
+            model = build_variation(apply(one_d, {"walls.law": law, "walls.preset": wall}))
+            assert model.pounding == paper
+            # the plan model is that building in x and in y, with that wall on both axes
+            plan = build_variation(apply(two_d, {"moat.law": law, "moat.preset": wall}))
+            assert plan.pounding.along("x") == paper and plan.pounding.along("y") == paper
+
+
 def _models_and_records():
     """The quick study's H concrete variation in plan, and its records (1D and 2D suites)."""
     from femoat.suite import suite_from_dict

@@ -58,14 +58,14 @@ CASES = {"1d": "1D", "2d_0": "2D 0 deg", "2d_worst": "2D worst"}
 QUICK = {"ids": [1, 6, 12], "duration": 12.0, "laws": ("E", "H")}
 """The quick variant: three pairs, the first 12 s of each record (6 s of model time), two laws."""
 
-_BUILDING = {  # the paper building, stated (femoat.scenario.defaults()'s, Building()'s)
+_BUILDING = {  # the paper building, stated (femoat.scenario.defaults()'s, Building()'s; story
+    # heights 39 in, Building's default)
     "base_weight": 10.0,                       # [kip]
     "floor_weights": [8.0, 8.0, 7.0],          # [kip]
     "story_model": "bilinear",
     "story": {"k0": 42.799, "Fy": 11.556, "b": 0.03},  # [kip/in], [kip], [-]
     "story_damping_ratio": 0.02,               # [-]
     "story_damping_period": 0.30,              # [s]
-    "story_heights": [39.0, 39.0, 39.0],       # [in]
     "isolator": {"R": 30.0, "mu": 0.06, "u_y": 0.01},  # [in], [-], [in]
     "isolator_capacity": 7.0,                  # [in] (in plan: |u|)
 }
