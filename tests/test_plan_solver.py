@@ -162,9 +162,15 @@ def _second_pair():
 @pytest.mark.parametrize("which", ["ff1", "ff6"])
 def test_against_the_opensees_twin_in_3d(pair_and_model, which):
     opensees_or_skip()
-    duration = 6.5
+    duration, integ = 6.5, None
     if which == "ff6":
+        # femoat at rtol 1e-8 here: the -y wall's second impact is a graze (8.7 kip against
+        # 59 kip on +y), whose peak force is the least accurate peak at the default rtol.
+        # Measured on this pair: femoat at the default / 1e-6 / 1e-8: 8.685 / 8.702 / 8.737
+        # kip; OpenSees at 2e-4 / 1e-4 / 5e-5 s: 8.933 / 8.672 / 8.707 kip (extrapolated from
+        # the last two: 8.741). The other peaks agree at the default as on the first pair.
         pair_and_model, duration = _second_pair(), 8.5
+        integ = Integrator(method="newmark", rtol=1e-8)
     # The OpenSees twin (flatSliderBearing + W/R springs, four Masroor chains) at fixed steps
     # of 1e-4 and 5e-5 s, extrapolated to zero step (its error is first order in the step: the
     # slider's radial return is a backward-Euler step of the friction rule); femoat at its
@@ -173,7 +179,7 @@ def test_against_the_opensees_twin_in_3d(pair_and_model, which):
     from femoat.opensees.plan import opensees_plan_run
 
     pair, model = pair_and_model
-    ours = run(model, pair, duration=duration).peaks
+    ours = run(model, pair, integ, duration=duration).peaks
     coarse = opensees_plan_run(model, pair, 1e-4, duration=duration)["peaks"]
     fine = opensees_plan_run(model, pair, 5e-5, duration=duration)["peaks"]
     assert all(ours[f"impacts_{s}"] > 0 for s in ("px", "mx", "py", "my"))  # every wall hit
