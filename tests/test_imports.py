@@ -31,7 +31,7 @@ LAYERS = [
     # 6 figures and renderings (never imported by layers 0-5)
     ("femoat.plotting", "femoat.render"),
     # 7 studies and scenarios
-    ("femoat.paper", "femoat.scenario", "femoat.suite", "femoat.report"),
+    ("femoat.paper", "femoat.scenario", "femoat.suite", "femoat.report", "femoat.studies"),
     # 8 the command line
     ("femoat.commands", "femoat.cli"),
 ]
