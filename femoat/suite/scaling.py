@@ -209,15 +209,19 @@ def _record_intensities(refs, period, time_scale, duration):
     from femoat.suite.records import applied_motion
 
     sa, pga, parts = [], [], []
+    known = {}  # a component's (Sa, PGA), once however many angles its pair is run at
     for r in refs:
         comp_sa, comp_pga = [], []
         for c in getattr(r, "components", (r,)):
-            gm = applied_motion(c, 1.0, time_scale, duration)
-            comp_pga.append(gm.pga)
-            comp_sa.append(None if period is None
-                           else float(response_spectrum(gm, period * time_scale, 0.05).psa))
-            if gm.pga == 0.0 or comp_sa[-1] == 0.0:
-                raise ValueError(f"record {c.label} has zero intensity and cannot be scaled.")
+            if c not in known:
+                gm = applied_motion(c, 1.0, time_scale, duration)
+                known[c] = (None if period is None else
+                            float(response_spectrum(gm, period * time_scale, 0.05).psa), gm.pga)
+                if gm.pga == 0.0 or known[c][0] == 0.0:
+                    raise ValueError(f"record {c.label} has zero intensity and cannot be "
+                                     "scaled.")
+            comp_sa.append(known[c][0])
+            comp_pga.append(known[c][1])
         pga.append(float(np.prod(comp_pga)) ** (1.0 / len(comp_pga)))
         sa.append(None if period is None else float(np.prod(comp_sa)) ** (1.0 / len(comp_sa)))
         parts.append(tuple(comp_sa))
