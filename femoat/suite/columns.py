@@ -27,7 +27,7 @@ import numpy as np
 
 from femoat.collapse import CRITERIA
 from femoat.suite import variations as var
-from femoat.suite.definition import code_version
+from femoat.suite.definition import code_version, wall_keys
 
 DTYPES = ("string", "int64", "float64", "bool")
 SECTIONS = {  # section: what its columns say (the headings of docs/suite_table.md)
@@ -38,9 +38,7 @@ SECTIONS = {  # section: what its columns say (the headings of docs/suite_table.
     "peaks": "the peak responses and the run's cost",
 }
 PLANNED = ("identity", "intensity", "variation")  # read before the run
-WALL_KEYS = ("pos", "neg", "px", "mx", "py", "my")
-"""The wall keys of a table: a 1D suite's walls on the positive and negative side, a plan
-suite's +x, -x, +y, -y walls."""
+
 PER = {  # family: (placeholder in the name, the indices of a suite)
     "story": ("k", lambda suite: range(1, suite.n_stories + 1)),
     "wall": ("w", lambda suite: suite.walls),
@@ -387,7 +385,7 @@ def column_of(name):
             holder = f"{{{PER[col.per][0]}}}"
             head, tail = col.name.split(holder)
             member = {"story": r"\d+", "criterion": "|".join(map(re.escape, CRITERIA)),
-                      "wall": "|".join(WALL_KEYS)}[col.per]
+                      "wall": "|".join(wall_keys())}[col.per]
             if re.fullmatch(re.escape(head) + f"(?:{member})" + re.escape(tail), name):
                 return col
     return None

@@ -137,9 +137,17 @@ class Suite:
     def walls(self):
         """The table's wall keys: ``pos``, ``neg`` (1D) or ``px``, ``mx``, ``py``, ``my`` (a
         plan suite: the +x, −x, +y, −y walls)."""
-        from femoat.plan.results import SIDE_KEYS
+        return wall_keys(self.plan)
 
-        return tuple(SIDE_KEYS.values()) if self.plan else ("pos", "neg")
+
+def wall_keys(plan=None):
+    """The wall keys of a table: a 1D suite's walls on the positive and negative side (pos,
+    neg), a plan suite's +x, -x, +y, -y walls (px, mx, py, my:
+    :data:`femoat.plan.results.SIDE_KEYS`); ``plan`` None: both kinds."""
+    from femoat.plan.results import SIDE_KEYS
+
+    line, plan_keys = ("pos", "neg"), tuple(SIDE_KEYS.values())
+    return {False: line, True: plan_keys, None: line + plan_keys}[plan]
 
 
 @functools.lru_cache(maxsize=1)

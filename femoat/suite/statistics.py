@@ -31,14 +31,22 @@ def _largest(t, name, pattern):
 
 METRICS = {  # name: (unit, value per run)
     "peak_impact_force": ("kip", lambda t: _largest(
-        t, "peak_impact_force", r"^peak_impact_force_(pos|neg|px|mx|py|my)$")),
+        t, "peak_impact_force", _per_wall("peak_impact_force"))),
     "peak_wall_displacement": ("in", lambda t: _largest(
-        t, "peak_wall_displacement", r"^peak_wall_displacement_(pos|neg|px|mx|py|my)$")),
+        t, "peak_wall_displacement", _per_wall("peak_wall_displacement"))),
     "peak_base_displacement": ("in", lambda t: t["peak_base_displacement"].abs()),
     "peak_drift_ratio": ("-", lambda t: t["peak_drift_ratio"].abs()),
     "peak_floor_acceleration": ("g", lambda t: _largest(
         t, "peak_floor_acceleration", r"^peak_floor_acceleration_\d+$")),
 }
+
+
+def _per_wall(name):
+    """The pattern of the per-wall columns ``name_<wall>``
+    (:func:`femoat.suite.definition.wall_keys`)."""
+    from femoat.suite.definition import wall_keys
+
+    return rf"^{name}_({'|'.join(wall_keys())})$"
 
 
 def record_keys(table):
