@@ -75,7 +75,8 @@ file.
 """
 
 from femoat.scenario.building import building_from_dict, plan_building_from_dict
-from femoat.scenario.document import (KEYS, PLAN_KEYS, Scenario, defaults, load_scenario,
+from femoat.scenario.document import (KEYS, PLAN_KEYS, Scenario, defaults, integrator_for,
+                                      load_scenario,
                                       model_from_dict, scenario_from_dict)
 from femoat.scenario.moat import moat_from_dict
 from femoat.scenario.motion import motion_from_dict
@@ -86,7 +87,8 @@ from femoat.scenario.walls import fe_wall_from_dict, walls_from_dict
 
 __all__ = [
     "KEYS", "PLAN_KEYS", "Scenario", "building_from_dict", "check_keys", "collapse_from_dict",
-    "defaults", "fe_wall_from_dict", "load_scenario", "moat_from_dict", "model_from_dict",
+    "defaults", "fe_wall_from_dict", "integrator_for", "load_scenario", "moat_from_dict",
+    "model_from_dict",
     "motion_from_dict", "pair_from_dict", "plan_building_from_dict", "read_toml",
     "scenario_from_dict", "solver_from_dict", "walls_from_dict",
 ]

@@ -117,6 +117,15 @@ def model_from_dict(d, base_dir=Path(".")):
                                                 built.base_weight / G))
 
 
+
+def integrator_for(model, table):
+    """The Integrator of a ``[solver]`` table for ``model``: a plan model's method defaults to
+    a plan run's own (:data:`femoat.run.PLAN_METHOD`), a 1D model's to the Integrator's."""
+    table = dict(table)
+    if isinstance(model, PlanModel):
+        table.setdefault("method", PLAN_METHOD)
+    return solver.solver_from_dict(table)
+
 def scenario_from_dict(d, base_dir=Path(".")):
     """Build a :class:`Scenario` from a parsed TOML document."""
     check_keys(d, TABLES, "scenario")
@@ -136,10 +145,7 @@ def scenario_from_dict(d, base_dir=Path(".")):
         label = str(walls_d.get("preset", walls.defaults()["preset"])) + \
             (" FE" if "fe" in walls_d else "")
     extra_time = motion.extra_time_from_dict(motion_d)
-    solver_d = dict(subtable(d, "solver", "scenario"))
-    if isinstance(model, PlanModel):  # a plan run's own default method (femoat.run)
-        solver_d.setdefault("method", PLAN_METHOD)
-    integ = solver.solver_from_dict(solver_d)
+    integ = integrator_for(model, subtable(d, "solver", "scenario"))
     out = subtable(d, "output", "scenario")
     check_keys(out, OUTPUT_KEYS, "[output]")
     collapse = solver.collapse_from_dict(subtable(d, "collapse", "scenario")) \

@@ -2,10 +2,10 @@
 collapse detection.
 
 The model tables are parsed by :mod:`femoat.scenario` (``model_from_dict``,
-``solver_from_dict``, ``collapse_from_dict``): a suite accepts exactly what a scenario file
-accepts, a building in plan (``[building] plan = true`` with ``[moat]``) included, whose solver
-defaults to a plan run's method (:data:`femoat.run.PLAN_METHOD`). Collapse criteria (:mod:`femoat.collapse`) are checked by the solver
-after every step; ``[run] stop_on_collapse`` is the default of ``[collapse] stop``.
+``integrator_for``, ``collapse_from_dict``): a suite accepts exactly what a scenario file
+accepts, a building in plan (``[building] plan = true`` with ``[moat]``) included. Collapse
+criteria (:mod:`femoat.collapse`) are checked by the solver after every step; ``[run]
+stop_on_collapse`` is the default of ``[collapse] stop``.
 """
 
 from dataclasses import dataclass
@@ -30,16 +30,11 @@ def build_variation(tables, stop_on_collapse=True, base_dir=Path(".")):
     """A :class:`Variation` from the model tables {'building', 'walls' or 'moat', 'solver',
     'collapse'}."""
     from femoat import scenario
-    from femoat.plan import PlanModel
-    from femoat.run import PLAN_METHOD
 
     model = scenario.model_from_dict(tables, base_dir)
     collapse = dict(tables.get("collapse", {}))
     collapse.setdefault("stop", bool(stop_on_collapse))
-    solver = dict(tables.get("solver", {}))
-    if isinstance(model, PlanModel):
-        solver.setdefault("method", PLAN_METHOD)
-    return Variation(model, scenario.solver_from_dict(solver),
+    return Variation(model, scenario.integrator_for(model, tables.get("solver", {})),
                      scenario.collapse_from_dict(collapse))
 
 

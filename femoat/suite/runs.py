@@ -1,13 +1,13 @@
 """Runs of a suite: their identity, one run as a table row, and the tasks workers run.
 
-A run is (record, variation, intensity); in a plan suite the record is a pair at one angle. Its ``run_id`` is a hash of the suite hash, the record,
-the variation and the intensity (``repr`` of the float, exact), so it is stable across processes
-and reruns: resuming skips every stored run_id. A task is a :class:`Batch` of runs at fixed
-intensities or a :class:`Trace` (one IDA curve by hunt-and-fill); ``task.run(suite, out_dir)``
-returns its rows. Worker processes keep each variation (:func:`femoat.suite.model.
-build_variation`) and each record (:func:`femoat.suite.records.load_motion`) in a per-process
-cache and return only scalars, one dict per run: a row of the table, its columns read by
-:mod:`femoat.suite.columns`.
+A run is (record, variation, intensity); in a plan suite the record is a pair at one angle. Its
+``run_id`` is a hash of the suite hash, the record, the variation and the intensity (``repr`` of
+the float, exact), so it is stable across processes and reruns: resuming skips every stored
+run_id. A task is a :class:`Batch` of runs at fixed intensities or a :class:`Trace` (one IDA
+curve by hunt-and-fill); ``task.run(suite, out_dir)`` returns its rows. Worker processes keep
+each variation (:func:`femoat.suite.model.build_variation`) and each record
+(:func:`femoat.suite.records.load_motion`) in a per-process cache and return only scalars, one
+dict per run: a row of the table, its columns read by :mod:`femoat.suite.columns`.
 """
 
 import hashlib
