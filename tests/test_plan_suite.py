@@ -99,6 +99,12 @@ def test_a_pair_of_files_with_different_time_steps_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, "time steps differ", "Rinaldi228", records=records)
 
 
+def test_a_missing_file_of_a_pair_is_named(tmp_path, capsys):
+    records = f'pairs = [["{RINALDI.as_posix()}", "missing_y.AT2"]]'
+    _fails(tmp_path, capsys, "[records] pairs", "missing_y.AT2", "does not exist",
+           records=records)
+
+
 def test_a_negative_gap_in_a_variation_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, "moat.gap=-1", "gap", extra='[variations]\n"moat.gap" = [2.0, -1.0]\n')
 

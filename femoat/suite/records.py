@@ -198,13 +198,8 @@ def _pair_refs(d, base_dir, source):
             raise ValueError(f"[records] pairs = {pairs!r}: give a list of [x, y] file pairs, "
                              "e.g. [['RSN1_X.AT2', 'RSN1_Y.AT2']] (or pairs = true with set = "
                              "'...').")
-        comps = []
-        for i, (fx, fy) in enumerate(pairs):
-            px, py = (_resolve(f, base_dir) for f in (fx, fy))
-            for f, given in ((px, fx), (py, fy)):
-                if not f.is_file():
-                    raise ValueError(f"[records] pairs[{i}]: {given!r} ({f}) does not exist.")
-            comps.append((_at2_ref(px), _at2_ref(py)))
+        files = [_at2_ref(f) for f in _files({"pairs": pairs}, base_dir)]
+        comps = list(zip(files[0::2], files[1::2]))
     else:
         raise ValueError(f"[records] {source} = ...: a plan suite's records are pairs; give "
                          "pairs = [['x.AT2', 'y.AT2'], ...] (or set = '...' with pairs = true).")
@@ -281,13 +276,14 @@ def _files(d, base_dir):
         if not files:
             raise ValueError(f"[records] glob = {d['glob']!r}: no file matches {pattern}.")
         return files
-    given = d["files"] if "files" in d else [f for pair in d.get("pairs", []) for f in pair]
+    key = "files" if "files" in d else "pairs"  # a plan suite's pairs: x, y, x, y, ...
+    given = d["files"] if key == "files" else [f for pair in d["pairs"] for f in pair]
     files = [_resolve(p, base_dir) for p in given]
     if not files:
-        raise ValueError("[records] files = []: list at least one AT2 file.")
+        raise ValueError(f"[records] {key} = []: list at least one AT2 file.")
     for p, name in zip(files, given):
         if not p.is_file():
-            raise ValueError(f"[records] files: {name!r} ({p}) does not exist.")
+            raise ValueError(f"[records] {key}: {name!r} ({p}) does not exist.")
     return files
 
 
