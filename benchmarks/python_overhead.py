@@ -1,6 +1,6 @@
 """Python work outside the compiled loop per paper run, with and without a history.
 
-    python benchmarks/python_overhead.py [--repeat 15] [--backend auto]
+    python benchmarks/python_overhead.py [--repeat 15]
 
 For each of the 20 paper runs (Erzincan, 10 laws x 2 walls, the default method): the process
 CPU of a whole ``femoat.run.run`` minus the CPU of its compiled loop (``stats.cpu_seconds``:
@@ -35,21 +35,17 @@ def outside(model, motion, repeat, **kw):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=15, help="best of N per run (default 15)")
-    ap.add_argument("--backend", default="auto", help="auto (AOT when built), jit or aot")
     args = ap.parse_args(argv)
-    from femoat.integration.solve import kernels
-
     motion = paper_motion()
-    run(paper_model("concrete", "H"), motion, backend=args.backend)  # compile / load first
-    print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; kernels: "
-          f"{kernels(args.backend)[1]}")
+    run(paper_model("concrete", "H"), motion)  # compile / load first
+    print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     print(f"{'run':12s}{'history':>10s}{'none':>10s}   (ms outside the loop; loop ms)")
     rows = []
     for wall in WALLS:
         for law in LAWS:
             model = paper_model(wall, law)
-            full, loop = outside(model, motion, args.repeat, backend=args.backend)
-            bare, _ = outside(model, motion, args.repeat, backend=args.backend, history=False)
+            full, loop = outside(model, motion, args.repeat)
+            bare, _ = outside(model, motion, args.repeat, history=False)
             rows.append((full, bare))
             print(f"{wall + '/' + law:12s}{1e3 * full:10.3f}{1e3 * bare:10.3f}   "
                   f"({1e3 * loop:.1f})", flush=True)

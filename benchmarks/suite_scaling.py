@@ -68,10 +68,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
-    from femoat.compilation import aot, aot_build
+    from femoat.compilation.warmup import warm_up
     from femoat.suite import load_suite, load_table, run_suite
 
-    aot_build.ensure()
+    warm_up()  # numba compiles or loads the kernels once, before the workers start
     work = Path(args.keep or tempfile.mkdtemp(prefix="femoat-suite-bench-"))
     work.mkdir(parents=True, exist_ok=True)
     levels = [round(0.1 * (k + 1), 2) for k in range(args.levels)]
@@ -82,8 +82,7 @@ def main():
 
     print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     print(f"suite: {len(suite.records)} records x {len(suite.combos)} variations x "
-          f"{len(levels)} levels = {len(suite.records) * len(suite.combos) * len(levels)} runs; "
-          f"kernels: {'aot' if aot.load() else 'jit'}")
+          f"{len(levels)} levels = {len(suite.records) * len(suite.combos) * len(levels)} runs")
 
     plain_loop(suite)  # warm: records read, kernels loaded
     wall, cpu, solver, n = min((plain_loop(suite) for _ in range(args.repeat)),

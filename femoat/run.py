@@ -29,7 +29,7 @@ def packed_model(model):
 
 
 def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, v0=None,
-        progress=None, channels=None, backend="auto", collapse=None, history=True):
+        progress=None, channels=None, collapse=None, history=True):
     """Integrate ``model`` under ``motion`` and return a :class:`~femoat.results.RunResult`.
 
     Parameters
@@ -60,9 +60,6 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         table, the energy balance, collapse and runaway are all kept inside the compiled loop
         and are the same as with a history; the result's history arrays have no rows and its
         history accessors raise (``channels`` must then be None).
-    backend : str
-        Compiled kernels: "auto" (ahead-of-time module when built, else numba JIT), "jit" or
-        "aot" (see :mod:`femoat.compilation.aot`); the results are identical.
     collapse : CollapseCriteria or None
         Limit states to check after every step (:mod:`femoat.collapse`); their first times are
         in ``result.collapse``, and the run ends at the first one unless ``collapse.stop`` is
@@ -78,7 +75,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
                          "is recorded: leave channels at None.")
     if isinstance(model, PlanModel):
         return _run_plan(model, motion, integrator, extra_time, duration, u0, v0, progress,
-                         channels, backend, collapse, history)
+                         channels, collapse, history)
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding) or a "
                          "PlanModel (femoat.plan).")
@@ -91,7 +88,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, backend=backend, limits=limits, history=history,
+                 progress=progress, limits=limits, history=history,
                  stop_at_limit=stop, **kw)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
@@ -108,7 +105,7 @@ pendulum (:func:`femoat.integration.solve.integrate` says why). Its accuracy at 
 against a converged run is measured by ``benchmarks/plan_speed.py``."""
 
 
-def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels, backend,
+def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels,
               collapse, history):
     """:func:`run` for a :class:`~femoat.plan.PlanModel` under a record pair."""
     if not isinstance(pair, RecordPair):
@@ -124,7 +121,7 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
     hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
-                 u0=u0, v0=v0, progress=progress, backend=backend, limits=limits,
+                 u0=u0, v0=v0, progress=progress, limits=limits,
                  history=history, stop_at_limit=stop, **kw)
     arrays = dict(hist.arrays)
     arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))

@@ -4,11 +4,6 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-# The tests run numba's JIT kernels and never build the ahead-of-time module in the user's cache
-# (the ``aot_cache`` fixture below builds it once in a temporary folder, for test_startup.py and
-# test_fingerprints.py).
-os.environ["FEMOAT_AOT"] = "0"
-
 from pathlib import Path  # noqa: E402
 
 # Test records shipped with the repository (provenance, licence and sha256 in data/README.md).
@@ -87,13 +82,13 @@ def render_backend(tmp_path_factory):
                     f"probe exited {probe.returncode}: {probe.stderr.strip()[-300:]}")
 
 
-# ---- the ahead-of-time kernels, built once per session in a temporary cache folder ----------
-import shutil  # noqa: E402
+# ---- a fresh Python, as a user starts one -----------------------------------------------------
 
 
-def _python_env(cache, aot_on=True):
-    """The environment of a fresh Python using femoat's cache folder ``cache``."""
-    return {**os.environ, "FEMOAT_CACHE": str(cache), "FEMOAT_AOT": "1" if aot_on else "0",
+def _python_env(cache):
+    """The environment of a fresh Python using femoat's cache folder ``cache`` (numba's cache
+    is the session's: a fresh Python loads the kernels the tests compiled)."""
+    return {**os.environ, "FEMOAT_CACHE": str(cache),
             "PYTHONPATH": os.pathsep.join([str(_ROOT), os.environ.get("PYTHONPATH", "")])}
 
 
@@ -101,19 +96,6 @@ def run_in(code, env):
     """Run ``code`` in a fresh Python in the repository's root with environment ``env``."""
     return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                           timeout=900, check=False, cwd=_ROOT)
-
-
-@pytest.fixture(scope="session")
-def aot_cache(tmp_path_factory):
-    """A femoat cache folder holding the ahead-of-time module (``femoat compile``), or skip."""
-    if shutil.which("cc") is None and shutil.which("gcc") is None:
-        pytest.skip("no C compiler: numba.pycc cannot link the ahead-of-time module (Debian/"
-                    "Ubuntu: apt-get install gcc); femoat keeps using numba's JIT")
-    cache = tmp_path_factory.mktemp("cache")
-    done = run_in("from femoat.cli import main; raise SystemExit(main(['compile']))",
-                  _python_env(cache))
-    assert done.returncode == 0, done.stderr[-3000:]
-    return cache
 
 
 def shear_chain(weights, ks):

@@ -59,7 +59,7 @@ def keys():
     return [(w, law, d) for d in ("published", "consistent") for w in WALLS for law in LAWS]
 
 
-def compute(quick, backend="jit", only=None, method="newmark"):
+def compute(quick, only=None, method="newmark"):
     """{"wall/law/damping": fingerprint} of the paper runs (all 20, or the keys in ``only``)."""
     from femoat.integration.settings import Integrator
     from femoat.paper import paper_model, paper_motion
@@ -72,7 +72,7 @@ def compute(quick, backend="jit", only=None, method="newmark"):
         if only is not None and name not in only:
             continue
         r = run(paper_model(wall, law, damping), motion, Integrator(method=method),
-                extra_time=1.0 if quick else 2.0, backend=backend)
+                extra_time=1.0 if quick else 2.0)
         out[name] = fingerprint(r)
     return out
 

@@ -1,15 +1,12 @@
 """The 20 paper runs give bit-identical histories, step and Newton counts and energies to the
 fingerprints stored before a refactor (``tests/data/fingerprints.json``, written by
-``tests/fingerprints.py --write``), with numba's JIT and with the ahead-of-time kernels.
+``tests/fingerprints.py --write``).
 
 A refactor of the solver that changes one floating-point operation's order shows up here; if
 such a change is intended, regenerate the file in its own commit and say why.
 """
 
-import json
-
 import pytest
-from conftest import _python_env, run_in
 from fingerprints import compute, load
 
 
@@ -30,16 +27,3 @@ def test_dp5_runs_match_the_stored_fingerprints():
     assert current.keys() == stored.keys()
     for name in stored:
         assert current[name] == stored[name], name
-
-
-def test_aot_runs_match_the_stored_fingerprints(aot_cache):
-    code = ("import json, sys; sys.path.insert(0, 'tests'); from fingerprints import compute; "
-            "print(json.dumps({m: compute(m == 'quick', backend='aot') "
-            "for m in ('full', 'quick')}))")
-    done = run_in(code, _python_env(aot_cache))
-    assert done.returncode == 0, done.stderr[-3000:]
-    current = json.loads(done.stdout.strip().splitlines()[-1])
-    stored = load()
-    for motion in stored:
-        for name in stored[motion]:
-            assert current[motion][name] == stored[motion][name], (motion, name)

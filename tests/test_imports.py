@@ -23,9 +23,8 @@ LAYERS = [
     ("femoat.structure", "femoat.plan"),
     # 4 time integration: the building solver, the single-impact solver
     ("femoat.integration", "femoat.impact"),
-    # 5 runs and what they produce; the ahead-of-time build; the OpenSees twin
+    # 5 runs and what they produce; the warm-up; the OpenSees twin
     ("femoat.results", "femoat.plan.results", "femoat.collapse", "femoat.run",
-     "femoat.compilation.aot_build",
      "femoat.compilation.probe", "femoat.compilation.warmup",
      "femoat.opensees"),
     # 6 figures and renderings (never imported by layers 0-5)

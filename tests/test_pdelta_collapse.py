@@ -30,7 +30,7 @@ def _one_story(p_delta, k=K_STORY):
 def _free(model, u0, duration):
     quiet = GroundMotion(np.zeros(int(duration / 0.01) + 1), 0.01, name="quiet")
     return run(model, quiet, Integrator(rtol=1e-7, max_step=1e-3), duration=duration,
-               u0=u0, backend="jit")
+               u0=u0)
 
 
 def test_story_loses_exactly_p_over_h():

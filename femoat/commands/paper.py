@@ -59,14 +59,4 @@ def run(args):
     print(format_table(summary_rows(runs)))
     for p in paths:
         print(f"wrote {p}")
-    _compile_ahead_of_time()
     return 0
-
-
-def _compile_ahead_of_time():
-    """Once per install: the solver's ahead-of-time kernels, so later processes start fast."""
-    import sys
-
-    from femoat.compilation import aot_build
-
-    aot_build.ensure(report=lambda message: print(message, file=sys.stderr, flush=True))

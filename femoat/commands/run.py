@@ -125,7 +125,4 @@ def run(args):
                 print(f"{k:28s} {_fmt(v):>12s}  [{unit_of(k)}]")
         for p in written:
             print(f"wrote {p}")
-    from femoat.commands.paper import _compile_ahead_of_time
-
-    _compile_ahead_of_time()
     return 0

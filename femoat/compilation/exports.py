@@ -1,10 +1,8 @@
 """The building solver's compiled entry points: the kernels it calls from Python.
 
-One list for the three places that must agree on it: the JIT namespace
-(:func:`femoat.integration.solve.kernels` with ``backend="jit"``), the ahead-of-time build
-(:mod:`~femoat.compilation.aot_build` exports exactly these) and the loader
-(:func:`femoat.compilation.aot.load` accepts a module only when it has them all). Modules are
-named, not imported, so that the loader stays free of numba and of the solver.
+One list, read by :func:`femoat.integration.solve.kernels` (the namespace handed to the
+solver) and by the warm-up (:mod:`~femoat.compilation.probe` calls every one). Modules are
+named, not imported, so that importing this list imports neither numba nor the solver.
 """
 
 EXPORTS = {

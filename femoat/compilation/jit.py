@@ -4,9 +4,8 @@ Importing numba and initialising its CPU target costs each process more than a w
 (numba's own import, its registries, and the scipy.linalg import numba makes for BLAS; measured
 in ``benchmarks/README.md``). femoat's kernels are decorated with :func:`njit` from this module
 instead of numba's: the decorator only records the function, and numba is imported on the first call
-from Python (or when another kernel that calls this one is compiled). A process that runs the
-building solver through the ahead-of-time compiled module (:mod:`femoat.compilation.aot`) never
-imports numba at all.
+from Python (or when another kernel that calls this one is compiled). A process that never runs
+the solver (reading results, plotting, the command line's help) never imports numba.
 
 Inside compiled code a :class:`Kernel` is exactly its numba dispatcher: numba is taught to
 type it as one (``typeof`` is registered for :class:`Kernel` when numba is first imported

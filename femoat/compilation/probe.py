@@ -1,8 +1,8 @@
 """A tiny building run that makes every solver entry point compile (or load): the default
 building between two concrete walls with Hertzdamp contact, 4 in away, under 0.2 s of a 1 g sine
 (no contact needed: every entry point is called by every run).
-:mod:`~femoat.compilation.aot_build` learns the kernels' signatures from it and
-:mod:`~femoat.compilation.warmup` pays the start-up with it.
+:mod:`~femoat.compilation.warmup` pays the start-up with it (``femoat compile``, the paper
+study, a run and a suite's client before its workers start).
 """
 
 import numpy as np
@@ -29,11 +29,11 @@ def probe_motion():
     return np.sin(2.0 * np.pi * t) * G, 0.01
 
 
-def run_probe(backend="auto"):
+def run_probe():
     """Run the probe through :func:`femoat.integration.solve.solve` (every entry point is
     called by every run); return the namespace of entry points used."""
     from femoat.integration.solve import kernels, solve
 
     accel, dt = probe_motion()
-    solve(probe_model().pack(), accel, dt, dt * (accel.size - 1), backend=backend)
-    return kernels(backend)[0]
+    solve(probe_model().pack(), accel, dt, dt * (accel.size - 1))
+    return kernels()

@@ -1,9 +1,8 @@
 """Which of femoat's source files decide its compiled code and its results, and their fingerprint.
 
-One list for the three checks that must agree on it: numba's on-disk cache (a kernel's cached
-code is dropped when a source it may inline changed, :mod:`~femoat.compilation.numba_cache`),
-the key of the ahead-of-time module (:mod:`~femoat.compilation.aot`) and the suite's code
-version (:func:`femoat.suite.definition.code_version`). Two scopes:
+One list for the two checks that must agree on it: numba's on-disk cache (a kernel's cached
+code is dropped when a source it may inline changed, :mod:`~femoat.compilation.numba_cache`)
+and the suite's code version (:func:`femoat.suite.definition.code_version`). Two scopes:
 
 * ``"kernels"``: what numba compiles. Whole folders, because a kernel inlines its siblings'
   kernels and reads their constants (option slots, law and material codes, bundles), plus the

@@ -13,14 +13,14 @@ takes it out again.
 
 How a law reaches the compiled loop
 -----------------------------------
-numba cannot add a branch to a compiled dispatcher at run time, and the ahead-of-time module
-(:mod:`femoat.compilation.aot`) is built once. So the compiled side knows *kernel families*,
+numba cannot add a branch to a compiled dispatcher at run time, and its on-disk cache keeps
+the compiled loop between processes. So the compiled side knows *kernel families*,
 not laws: a family (:class:`~femoat.contact.spec.KernelFamily`) is a set of kernels with one params layout,
 and a law names the family it runs on and packs its parameters in that layout. The families
 are those of :data:`MODULES`, numbered in that order (:data:`FAMILIES`; a law's ``code`` is its
 family's number), and the dispatcher that selects a family's kernel by that number,
 :mod:`femoat.contact._dispatch`, is generated from them by ``python -m femoat.contact.generate``
-(committed, like any source, so numba's cache and the ahead-of-time build see a plain file;
+(committed, like any source, so numba's cache sees a plain file;
 :mod:`femoat.contact.kernels` refuses to import a dispatcher that lists other families). Hence:
 
 * a law on an existing family (a linear spring of another stiffness, a Hertz law with another

@@ -1,6 +1,7 @@
 """Run the compiled loop on a packed model: validation, buffers, status → exceptions."""
 
 import dataclasses
+import functools
 import math
 import time as _time
 from dataclasses import dataclass, replace
@@ -61,7 +62,7 @@ CHANNELS = registry.GROUPS
 
 
 def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-          chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
+          chunks=None, lazy=True, channels=CHANNELS, limits=None,
           stop_at_limit=False, history=True):
     """Integrate ``packed`` under ground acceleration ``ag`` [in/s²] sampled at ``dt_rec`` [s].
 
@@ -92,10 +93,6 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
         Skip the wall DOFs in the Newton elimination while no contact carries force (exact: the
         walls are then uncoupled linear oscillators). False solves the full system every step
         (for measuring what the lazy path saves).
-    backend : str
-        "auto" (the ahead-of-time compiled kernels of
-        :mod:`femoat.compilation.aot` when built, else numba's
-        JIT), "jit" or "aot" (an error when it is not built). Both give identical results.
     limits : sequence of Limit or None
         Limit states checked after every accepted step (:mod:`femoat.integration.limits`):
         the first time each row is exceeded is recorded, and a runaway row ends the run. None
@@ -116,7 +113,7 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     """
     hist, status = integrate(packed, ag, dt_rec, duration, integrator, u0=u0, v0=v0,
                              progress=progress, chunks=chunks, lazy=lazy, channels=channels,
-                             backend=backend, limits=limits, stop_at_limit=stop_at_limit,
+                             limits=limits, stop_at_limit=stop_at_limit,
                              history=history)
     if status.error is not None:
         raise status.error(status.message)
@@ -139,13 +136,13 @@ class Status(NamedTuple):
 
 
 def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progress=None,
-              chunks=None, lazy=True, channels=CHANNELS, backend="auto", limits=None,
+              chunks=None, lazy=True, channels=CHANNELS, limits=None,
               stop_at_limit=False, history=True):
     """(:class:`History`, :class:`Status`): :func:`solve` (the same parameters) without
     raising when the stepping cannot continue: the history, peaks, impacts and energies up
     to the time reached, and the status saying why it stopped. Bad input still raises
     ``ValueError``."""
-    kern, backend = kernels(backend)
+    kern = kernels()
     integ = integrator or Integrator()
     packed, ag, u, v = _inputs(packed, ag, dt_rec, duration, u0, v0)
     settings = _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit,
@@ -159,7 +156,7 @@ def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, p
     kern.finish_peaks(model, state, settings, rec)
     kern.finish_episodes(state, rec)
     cpu = _time.process_time() - cpu0
-    return _history(kern, backend, packed, model, state, rec, start, history, status,
+    return _history(kern, packed, model, state, rec, start, history, status,
                     cpu), status
 
 
@@ -377,7 +374,7 @@ def _columns(rec):
             for name, arr in zip(registry.BUFFERS, rec)}
 
 
-def _history(kern, backend, packed, model, state, rec, start, history, status, cpu):
+def _history(kern, packed, model, state, rec, start, history, status, cpu):
     """The :class:`History` of the run (its rows trimmed to the samples recorded)."""
     stats = state.stats
     m = stats[codes.S_NOUT]
@@ -390,7 +387,7 @@ def _history(kern, backend, packed, model, state, rec, start, history, status, c
                    rejected_newton=int(stats[codes.S_REJECT_NEWTON]),
                    newton_iterations=int(stats[codes.S_NEWTON]),
                    events=int(stats[codes.S_EVENTS]),
-                   cpu_seconds=cpu, recorded=int(m) if history else 0, kernels=backend,
+                   cpu_seconds=cpu, recorded=int(m) if history else 0, kernels="jit",
                    t_reached=float(state.t[0])),
         energy=_energy(kern, packed, model, state, start.energy),
         limit_times=np.where(state.first_exceed >= 0.0, state.first_exceed, np.nan),
@@ -463,8 +460,8 @@ _FLOAT_ARRAYS = ("M", "C", "K", "r", "R", "el_P", "el_S", "c_B", "c_gap", "c_P",
 
 def _canonical(packed):
     """``packed`` with its arrays as the compiled kernels take them: C-contiguous float64, int64
-    codes and indices. (The ahead-of-time module checks only the item size of an argument, so
-    a strided or wrongly typed array would be misread rather than rejected.)"""
+    codes and indices: one type per argument, so one compiled signature (a strided or read-only
+    array would be another type to numba, compiled and cached again)."""
     changes = {}
     fields = {f.name for f in dataclasses.fields(packed)}
     for names, dtype in ((_INT_ARRAYS, np.int64), (_FLOAT_ARRAYS, np.float64)):
@@ -506,29 +503,20 @@ def _plan_arrays(packed):
     nb = packed.bearing_dofs.size // 2
     return _PlanArrays(
         packed.dof_axis, np.array(packed.layout.floor_dofs[0, :2], dtype=np.int64),  # (writable:
-        # a read-only array is another type to numba, another signature to the AOT module)
+        # a read-only array is another type to numba: another compiled signature)
         packed.bearing_dofs.reshape(nb, 2), packed.bearing_P.reshape(nb, N_BEARING_PARAMS),
         packed.bearing_S.reshape(nb, N_BEARING_STATE), np.ascontiguousarray(packed.c_T),
         np.ascontiguousarray(packed.c_friction))
 
 
-def kernels(backend="auto"):
-    """(namespace of the solver's compiled entry points, "aot" or "jit") for ``backend``."""
-    from femoat.compilation import aot
-
-    if backend not in ("auto", "jit", "aot"):
-        raise ValueError(f"backend = {backend!r}: use 'auto', 'jit' or 'aot'.")
-    if backend != "jit":
-        module = aot.load()
-        if module is not None:
-            return module, "aot"
-        if backend == "aot":
-            raise ValueError("no ahead-of-time compiled kernels for this femoat, Python and "
-                             "numba: run `femoat compile` (or "
-                             "femoat.compilation.aot_build.build()), or use backend='auto'.")
-    return _jit_kernels(), "jit"
+def kernels():
+    """The namespace of the solver's compiled entry points
+    (:data:`femoat.compilation.exports.EXPORTS`): numba's JIT kernels, compiled on first call
+    or loaded from numba's on-disk cache."""
+    return _jit_kernels()
 
 
+@functools.lru_cache(maxsize=1)
 def _jit_kernels():
     """The entry points (:data:`femoat.compilation.exports.EXPORTS`) as numba's JIT kernels."""
     from importlib import import_module

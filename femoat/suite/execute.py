@@ -11,8 +11,9 @@
   is rerun one run per task, and the run that still fails is stored with status 'error'.
   Each finished task's rows are written at once, so an interruption (Ctrl-C, a killed worker
   or client) loses at most the tasks in flight.
-* Workers use the ahead-of-time kernels (:mod:`femoat.compilation.aot`), built once in the client if
-  missing (about 45 s, once per machine); without them they fall back to numba's JIT.
+* The client compiles the solver's kernels into numba's on-disk cache before any worker starts
+  (once per install: :func:`femoat.compilation.warmup.warm_up`), so that the workers load them
+  from the cache instead of each compiling them.
 * On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
   path (their samples are checked against the definition).
 """
@@ -130,21 +131,16 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
 
 
 def _kernels(stream):
-    """Build the ahead-of-time kernels once (client side) if missing; say which are used."""
-    from femoat.compilation import aot, aot_build
+    """Compile the solver's kernels into numba's cache (or load them) in the client, before any
+    worker starts; say so when it is the first time."""
+    from femoat.compilation.warmup import warm_up
 
-    aot_build.ensure(report=lambda m: stream.write(m + "\n"))
-    if aot.load() is not None:
-        return "aot"
-    stream.write("femoat suite: using numba's JIT kernels (the ahead-of-time module is switched "
-                 "off or could not be built): each worker compiles or loads them once\n")
+    cpu = warm_up()
+    if cpu > 10.0:
+        stream.write(f"femoat suite: compiled the solver's kernels in {cpu:.0f} s of CPU (once "
+                     "per install: later processes and every worker load them from numba's "
+                     "cache)\n")
     return "jit"
-
-
-def _worker_kernels():
-    from femoat.compilation import aot
-
-    return "aot" if aot.load() is not None else "jit"
 
 
 def _finish(suite, out, task, rows, progress):
@@ -228,11 +224,6 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         client.register_plugin(_ignore_sigint_plugin())  # and a worker restarted later
     futures = {}
     try:
-        kinds = set(client.run(_worker_kernels).values())
-        if summary["kernels"] == "aot" and kinds != {"aot"}:
-            progress.stream.write(f"femoat suite: workers use {sorted(kinds)} kernels (the "
-                                  "ahead-of-time module is not loadable there)\n")
-        summary["worker_kernels"] = sorted(kinds)
         shared = client.scatter(suite, broadcast=True)
         client.run(rn.warm, suite)  # per worker: models built, record set loaded, once
         progress.restart()
