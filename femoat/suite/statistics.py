@@ -139,17 +139,12 @@ def walls(table):
 
 
 def response_row(rows):
-    """Counts, pounding probability (any wall, then each wall of :func:`walls`: the fraction of
-    the runs with an impact on it) and, over the runs that did not collapse, the median and
-    lognormal dispersion (std of ln over the positive values, ddof 1) of each metric."""
+    """Counts and, over the runs that did not collapse, the median and lognormal dispersion
+    (std of ln over the positive values, ddof 1) of each metric. The probability of pounding
+    is :mod:`femoat.suite.pounding`'s (every record at every level, from its trace)."""
     alive = rows[~rows["collapse"]]
-    pounding = (rows["pounding"].fillna(False).astype(bool) if "pounding" in rows
-                else rows[["impacts_pos", "impacts_neg"]].fillna(0).sum(axis=1) > 0)
     row = {"n_records": len(rows), "n_collapsed": int(rows["collapse"].sum()),
-           "n_not_collapsed": len(alive), "pounding probability [-]": float(pounding.mean())}
-    for w in walls(rows):
-        row[f"pounding probability, wall {w} [-]"] = float(
-            (rows[f"impacts_{w}"].fillna(0).to_numpy(float) > 0).mean())
+           "n_not_collapsed": len(alive)}
     for name, (unit, value) in METRICS.items():
         v = value(alive).to_numpy(float) if len(alive) else np.array([])
         v = v[np.isfinite(v)]
