@@ -229,7 +229,7 @@ def test_plan_suite_pounds_and_its_report_gives_pounding_per_wall(plan_table):
         assert list(got.index) == ["any", *suite.walls]
         for w in suite.walls:
             hit = rows[f"impacts_{w}"] > 0
-            assert got.loc[w, "n_records"] == len(rows) == 4
+            assert got.loc[w, "n_analyses"] == len(rows) == 4
             assert got.loc[w, "n_pounded"] == hit.sum()
             assert got.loc[w, "n_collapsed"] == (rows["collapsed"] & ~hit).sum()
             assert got.loc[w, "P(pounding) [-]"] == pytest.approx(hit.mean(), abs=1e-3)

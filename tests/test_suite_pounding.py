@@ -68,10 +68,10 @@ def test_fractions_per_wall_count_every_record_and_collapse_apart():
     # pounded at 1.0 g, below its collapse)
     assert p.loc[("pos", 1.5), "P(pounding) [-]"] == pytest.approx(4 / 5)
     r = p.loc[("pos", 3.0)]
-    assert (r["n_pounded"], r["n_collapsed"], r["n_records"]) == (4, 1, 5)
+    assert (r["n_pounded"], r["n_collapsed"], r["n_analyses"]) == (4, 1, 5)
     # neg: every record counts at every level; at 1.25 g the onsets below are θe^(βq) <= 1.25,
     # i.e. q <= ln(1.25/1.2)/0.5 = 0.082: the three lowest quantiles (−1.28, −0.52, 0)
-    assert p.loc[("neg", 1.25), "n_records"] == N
+    assert p.loc[("neg", 1.25), "n_analyses"] == N
     assert p.loc[("neg", 1.25), "n_pounded"] == np.sum(Q <= np.log(1.25 / THETA) / BETA) == 3
     # any wall: the first impact on either (record 4 pounds on neg at 1.2·e^(0.5·1.28) = 2.28 g
     # > its collapse at 1.25 g: it never pounds anything)
@@ -167,7 +167,7 @@ def test_the_report_writes_the_pounding_fragility_and_a_panel_per_wall(tmp_path)
     p = pd.read_csv(tmp_path / "pounding_probability.csv")
     # S_MT (Dmax, T = 1.5 s) = 0.6 g; hunt-and-fill levels S_MT·(0.5, 1, 1.5, 2, 3): every
     # record at every level, per wall
-    assert set(p["wall"]) == {"any", "pos", "neg"} and set(p["n_records"]) == {N}
+    assert set(p["wall"]) == {"any", "pos", "neg"} and set(p["n_analyses"]) == {N}
     assert sorted(set(p["im [g]"])) == [0.3, 0.6, 0.9, 1.2, 1.8]
     f = pd.read_csv(tmp_path / "pounding_fragility.csv").set_index("wall")
     # at 0.6 g only record 0 (onset 0.5 g) has pounded on pos: 1 of 5

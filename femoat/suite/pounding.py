@@ -1,6 +1,7 @@
 """The onset of pounding as a fragility, per wall: P(a record pounds on wall w | IM = x).
 
-Every record counts once at every level, its state read from its own trace (its runs, in IM
+Every record counts once at every level (a plan suite's pair once at each of its angles: its
+analyses, :data:`femoat.suite.statistics.RECORD_RULE`), its state read from its own trace (its runs, in IM
 [g] order), as the collapse fragility reads a record's collapse (:mod:`femoat.suite.fragility`):
 
 - its **onset** on a wall is the lowest IM at which it pounded on that wall (the upper bound
@@ -84,13 +85,13 @@ def level_row(tr, level):
 
 
 def probability_table(t, walls, levels):
-    """Long table: per wall ("any" first) and level [g], :func:`level_row` with n_records."""
+    """Long table: per wall ("any" first) and level [g], :func:`level_row` with n_analyses."""
     rows = []
     for w in [ANY, *walls]:
         tr = traces(t, w)
-        rows += [{"wall": w, "im [g]": float(x), "n_records": len(tr), **level_row(tr, x)}
+        rows += [{"wall": w, "im [g]": float(x), "n_analyses": len(tr), **level_row(tr, x)}
                  for x in levels]
-    columns = ["wall", "im [g]", "n_records", *(f"n_{k.replace(' ', '_')}" for k in STATES),
+    columns = ["wall", "im [g]", "n_analyses", *(f"n_{k.replace(' ', '_')}" for k in STATES),
                "P(pounding) [-]"]
     return pd.DataFrame(rows, columns=columns)
 
@@ -134,7 +135,7 @@ def fragility_table(t, walls, ida, levels, smt=None):
     for w in [ANY, *walls]:
         tr = traces(t, w)
         theta, beta, med, note = fit(tr, ida, levels)
-        row = {"wall": w, "n_records": len(tr),
+        row = {"wall": w, "n_analyses": len(tr),
                "n_pounded_ever": int(np.isfinite(tr["onset"]).sum()),
                "n_collapsed_first": int((~np.isfinite(tr["onset"])
                                          & np.isfinite(tr["collapse"])).sum()),

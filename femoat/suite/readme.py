@@ -8,6 +8,7 @@ runs' median intensity without one), and end in what applies only with a margin:
 
 from femoat.suite import policies
 from femoat.suite.scaling import describe
+from femoat.suite.statistics import RECORD_RULE
 
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
@@ -16,8 +17,9 @@ FILES = {
     "and a failed check reads 'inconclusive'), the fitted lognormal theta [g] and beta [-], "
     "S_CT had every solver failure been a collapse (the sensitivity to the policy), S_MT, CMR, "
     "SSF, ACMR, mu_T, beta_TOT, the acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the "
-    "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_collapsed counts "
-    "records (IDA) or runs (stripes). Read the verdict column first; the note says why a "
+    "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_records counts "
+    "records (a plan suite's pairs), n_analyses the records at each angle; n_collapsed counts "
+    "analyses (IDA) or runs (stripes). Read the verdict column first; the note says why a "
     "number is missing or bounded.{no_margin}",
     "response_by_variation.csv": "per variation and intensity: records (IDA: a record that "
     "collapsed below the intensity counts as collapsed there; stripes: runs), collapses and, "
@@ -28,11 +30,11 @@ FILES = {
     "pounding_probability.csv). A dispersion near or above 1 means the runs mix very different responses.",
     "pounding_probability.csv": "per variation, wall (any wall first, then each wall: pos, neg "
     "the walls on the positive and negative side; a plan suite's px, mx, py, my the +x, -x, "
-    "+y, -y walls) and intensity: every record counted once, its state read from its own "
-    "trace (its runs in intensity order): n_pounded (it pounded on that wall at or below the "
+    "+y, -y walls) and intensity: every analysis (a record; in a plan suite a pair at one of "
+    "its angles) counted once, its state read from its own trace (its runs in intensity order): n_pounded (it pounded on that wall at or below the "
     "intensity: once pounding, pounding above), n_collapsed (it collapsed before it touched "
     "that wall: its own category, never 'did not pound'), n_beyond (the intensity is above "
-    "its last run: unknown), n_not_pounded, and P(pounding) = n_pounded / n_records, which "
+    "its last run: unknown), n_not_pounded, and P(pounding) = n_pounded / n_analyses, which "
     "never falls as the intensity grows.",
     "pounding_fragility.csv": "per variation and wall (any first): the onset of pounding as "
     "a fragility, read like the collapse: a record's onset is the lowest intensity at which it "
@@ -157,8 +159,7 @@ def readme_text(meta, inputs, basis, ida, levels, written):
                   "upper bound of the final bracket); records that never collapse are "
                   "right-censored at their largest IM (survival term in the likelihood)."
                   if ida else "multiple stripes, binomial likelihood (Baker 2015)."),
-              "A record is one horizontal component (both components of a pair count, as in "
-              "FEMA P695).",
+              RECORD_RULE,
               "Intensities of the response tables: " + (
                   "every stripe / IM level." if levels is None else
                   "each record's run nearest (within +-25 %) to " +

@@ -3,8 +3,10 @@
 A plan suite (``[building] plan = true``) runs record **pairs**: ``pairs = true`` with a FEMA
 P695 ``set`` (component a along x, b along y), or ``pairs = [["x.AT2", "y.AT2"], ...]``, each at
 every orientation of ``angles`` [deg] (default [0]; positive from +x toward +y,
-:mod:`femoat.ground_motions.pair`). A :class:`PairRef` is one pair at one angle: the suite's
-"record" of a run (its label, e.g. ``farfield/3@30``, names both).
+:mod:`femoat.ground_motions.pair`). A :class:`PairRef` is one pair at one angle: the unit of
+a run and of a hunt-and-fill trace (its label, e.g. ``farfield/3@30``, names both); the report
+counts the pair as the record and each angle as one analysis of it
+(:data:`femoat.suite.statistics.RECORD_RULE`).
 
 A :class:`RecordRef` names one component by identity (a FEMA P695 set, ID and component, or an AT2
 file) and carries what the results table reports about it. :func:`load_motion` turns a reference

@@ -7,7 +7,8 @@ significant digits)."""
 import math
 
 COLUMNS = [  # (heading, collapse_summary.csv column)
-    ("variation", "variation"), ("records", "n_records"), ("runs", "n_runs"),
+    ("variation", "variation"), ("records", "n_records"), ("analyses", "n_analyses"),
+    ("runs", "n_runs"),
     ("collapsed", "n_collapsed"), ("failed", None), ("S_CT [g]", "S_CT empirical [g]"),
     ("CMR [-]", "CMR [-]"), ("SSF [-]", "SSF [-]"), ("ACMR [-]", "ACMR [-]"),
     ("ACMR10% [-]", "ACMR10% [-]"), ("ACMR20% [-]", "ACMR20% [-]"), ("verdict", "verdict"),
@@ -39,7 +40,9 @@ def rows(summary):
     for _, r in summary.iterrows():
         line = []
         for heading, col in COLUMNS:
-            if col is None:  # failed: solver failures and errors
+            if col not in (None, *r.index):  # a summary written before the column existed
+                line.append("-")
+            elif col is None:  # failed: solver failures and errors
                 line.append(str(int(r["n_solver_failures"]) + int(r["n_errors"])))
             elif col == "S_CT empirical [g]" and str(r.get("S_CT is a lower bound")) == "True":
                 line.append(">=" + cell(r[col]))
@@ -107,6 +110,8 @@ def verdict_text(table, summary, inputs, basis, where, onsets=None):
                   "of one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
                   "archetype; '>=' marks a lower bound (fewer than half of the records "
                   "collapsed)")
+    legend += ("; records: pairs (plan) or components (1D); analyses: a pair at each angle "
+               "(FEMA P695 3D), S_CT over the analyses")
     lines += ["", table_text(summary), "", legend]
     text = "\n".join(lines) + "\n"
     pound = pounding_text(onsets, basis.smt)
