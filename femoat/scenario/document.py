@@ -91,7 +91,10 @@ def defaults(plan=False):
         out.update(moat=moat.defaults(), motion=pair.defaults())
     else:
         out.update(walls=walls.defaults(), motion=motion.defaults())
-    return {**out, "solver": solver.defaults(), "output": dict(OUTPUT_DEFAULTS)}
+    solver_table = solver.defaults()
+    if plan:  # a plan run's own method (the explicit open phase is refused in plan)
+        solver_table["method"] = PLAN_METHOD
+    return {**out, "solver": solver_table, "output": dict(OUTPUT_DEFAULTS)}
 
 
 def model_from_dict(d, base_dir=Path(".")):
@@ -124,6 +127,14 @@ def integrator_for(model, table):
     table = dict(table)
     if isinstance(model, PlanModel):
         table.setdefault("method", PLAN_METHOD)
+        from femoat.integration import methods
+
+        if table["method"] in methods.CODES and methods.module(table["method"]).EXPLICIT:
+            raise ValueError(
+                f"[solver] method = {table['method']!r}: a plan run cannot use the explicit "
+                "open phase (on a curved orbit its stages read the friction direction only to "
+                f"first order, docs/plan.md §10); write method = \"{PLAN_METHOD}\" in "
+                "[solver] or leave method out (a plan file's default).")
     return solver.solver_from_dict(table)
 
 def scenario_from_dict(d, base_dir=Path(".")):

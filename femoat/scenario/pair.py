@@ -64,6 +64,10 @@ def pair_from_dict(d, base_dir=Path(".")):
     check_keys(d, KEYS, where)
     default = defaults()
     angle = number(d, "angle", default["angle"], where, "deg")
+    if not 0.0 <= angle < 360.0:
+        raise ValueError(f"{where} angle = {angle:g}: an orientation in [0, 360) [deg] "
+                         f"(positive from +x toward +y); write angle = {angle % 360.0:g} for "
+                         "the same turn.")
     source = text(d, "source", default["source"], where)
     if source not in SOURCES:
         raise ValueError(f"{where} source = {source!r}: a pair's source is {one_of(SOURCES)}.")

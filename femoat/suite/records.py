@@ -179,6 +179,10 @@ def _pair_refs(d, base_dir, source):
             for a in angles):
         raise ValueError(f"[records] angles = {angles!r}: give a non-empty list of orientations "
                          "[deg], e.g. [0, 45, 90, 135].")
+    outside = [a for a in angles if not 0.0 <= a < 360.0]
+    if outside:
+        raise ValueError(f"[records] angles = {angles!r}: {outside[0]!r} is outside [0, 360) "
+                         f"[deg]; write {float(outside[0]) % 360.0:g} for the same turn.")
     if len({float(a) for a in angles}) != len(angles):
         raise ValueError(f"[records] angles = {angles!r} lists an angle twice.")
     pairs = d["pairs"]
