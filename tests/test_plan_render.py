@@ -56,8 +56,11 @@ def test_frames_decimate_the_orbit(history):
     h = PlanHistory(history.time, history.base, spike, history.gaps)
     g = plan_frames(h, fps=10, speed=1.0, end=3.5)
     assert np.flatnonzero(g["contact"][:, 1]).tolist() == [16] and g["force"][16, 1] == 7.0
-    with pytest.raises(ValueError, match="more than max_frames"):
+    with pytest.raises(ValueError, match="more than max_frames") as err:
         plan_frames(history, fps=1000)
+    # the error names every option that fixes it, as femoat render run spells them
+    for option in ("--speed", "--fps", "--start/--end", "--max-frames"):
+        assert option in str(err.value)
     with pytest.raises(ValueError, match="start = 2.0 and end = 1.0"):
         plan_frames(history, start=2.0, end=1.0)
     with pytest.raises(ValueError, match="fps = 0 must be a positive number"):
@@ -146,3 +149,11 @@ def test_femoat_render_run_draws_a_plan_run_in_top_view(tmp_path, render_backend
 
     gif = Image.open(tmp_path / "plan.gif")
     assert gif.n_frames == 15 and gif.size == (200, 200)
+
+
+def test_femoat_render_help_names_the_plan_top_view(capsys):
+    from femoat.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["render", "--help"])
+    assert "top view" in capsys.readouterr().out
