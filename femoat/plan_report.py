@@ -51,9 +51,10 @@ def summary_row(result, pair):
     return row
 
 
-def model_echo(model, pair, moat_given=True):
+def model_echo(model, pair, moat_given=True, scaling=None):
     """Lines that say what ran: the building's isolator and weight, each wall of the moat
-    (law, gap, wall stiffness and damping, friction), the pair, its angle and scale."""
+    (law, gap, wall stiffness and damping, friction), the pair, its angle and scale, and with
+    ``scaling`` (a :class:`~femoat.scenario.intensity.SaScaling`) how the scale was found."""
     b = model.building
     lines = [f"building: in plan, {len(b.floor_weights)} stories, weight "
              f"{b.base_weight + sum(b.floor_weights):g} kip; isolator {_isolator(b.isolator)}"]
@@ -70,6 +71,8 @@ def model_echo(model, pair, moat_given=True):
     lines.append(f"pair: {pair.name}, angle {pair.angle:g} deg (from +x toward +y), scale "
                  f"{pair.scale:.4g} [-] on both components; dt {pair.dt:g} s, "
                  f"{pair.x.npts} samples")
+    if scaling is not None:
+        lines.append(f"  {scaling.describe()}")
     return lines
 
 
@@ -95,9 +98,10 @@ def figure_title(model, pair):
     return f"{pair.name} at {pair.angle:g} deg, x{pair.scale:.3g}; {law}"
 
 
-def write_plan_summary(result, model, pair, folder, moat_given=True, written=()):
+def write_plan_summary(result, model, pair, folder, moat_given=True, written=(), scaling=None):
     """summary.csv and README.txt of a plan run into ``folder``; returns their paths.
-    ``written`` the other files of the run (named in the README)."""
+    ``written`` the other files of the run (named in the README); ``scaling`` the pair's
+    :class:`~femoat.scenario.intensity.SaScaling` (echoed) or None."""
     folder = Path(folder)
     row = summary_row(result, pair)
     buf = io.StringIO()
@@ -108,7 +112,7 @@ def write_plan_summary(result, model, pair, folder, moat_given=True, written=())
     write_text(paths[0], buf.getvalue())
     width = max(len(k) for k in row)
     table = "\n".join(f"  {k.ljust(width)}  {_cell(v)}" for k, v in row.items())
-    text = ["femoat run: a building in plan", "", *model_echo(model, pair, moat_given), "",
+    text = ["femoat run: a building in plan", "", *model_echo(model, pair, moat_given, scaling), "",
             "units: kip, in, s; accelerations in g; angles in deg (units in each heading)",
             "walls in the columns: px +x, mx -x, py +y, my -y (empty: no wall on that side)",
             "solver_seconds: CPU time of the compiled loop; compile_seconds: start-up paid "

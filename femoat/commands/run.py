@@ -90,9 +90,11 @@ def run(args):
     if sc.plan:  # what runs, before it runs (a default moat said loudly)
         from femoat.plan_report import model_echo
 
-        echo = model_echo(sc.model, sc.motion, "moat" in sc.source)
+        echo = model_echo(sc.model, sc.motion, "moat" in sc.source, sc.intensity)
         if not args.json:
             print("\n".join(echo))
+    elif sc.intensity is not None and not args.json:  # the factor, before the run
+        print(f"motion: {sc.motion.name}, {sc.intensity.describe()}")
     from femoat.compilation.warmup import warm_up
 
     startup = warm_up()  # compile / load the kernels outside the run's timed loop
@@ -110,7 +112,7 @@ def run(args):
         paths = _plan_outputs(result, out, figures=sc.figures and not args.no_figures,
                               title=figure_title(sc.model, sc.motion))
         paths += write_plan_summary(result, sc.model, sc.motion, out, "moat" in sc.source,
-                                    written=[out / "run.npz", *paths])
+                                    written=[out / "run.npz", *paths], scaling=sc.intensity)
     else:
         from femoat.report import write_outputs
 
@@ -118,7 +120,8 @@ def run(args):
         wall = sc.wall_label
         # (the figures include global_response.png, drawn once)
         paths = write_outputs({(wall, law): result}, sc.motion, out, "scenario",
-                              figures=sc.figures and not args.no_figures)
+                              figures=sc.figures and not args.no_figures,
+                              notes=[sc.intensity.describe()] if sc.intensity else ())
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:
@@ -129,7 +132,8 @@ def run(args):
     if args.json:
         print(json.dumps({**summary, "units": {k: unit_of(k) for k in summary},
                           "written": [str(p) for p in written],
-                          **({"model": echo} if echo else {})}))
+                          **({"model": echo} if echo else {}),
+                          **({"scaling": sc.intensity._asdict()} if sc.intensity else {})}))
     else:
         for k, v in summary.items():
             if k == "runaway":  # the run ended early: say so in a sentence

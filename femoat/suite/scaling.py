@@ -213,7 +213,7 @@ def _record_intensities(refs, period, time_scale, duration):
     intensity is the **geometric mean** of its two components' (the FEMA P695 pair practice,
     :mod:`femoat.ground_motions.pair`): it does not change with the pair's angle, so a set is
     scaled once and then applied at every orientation."""
-    from femoat.ground_motions import response_spectrum
+    from femoat.ground_motions.intensity import geometric_mean, spectral_acceleration
     from femoat.suite.records import applied_motion
 
     sa, pga, parts = [], [], []
@@ -224,14 +224,14 @@ def _record_intensities(refs, period, time_scale, duration):
             if c not in known:
                 gm = applied_motion(c, 1.0, time_scale, duration)
                 known[c] = (None if period is None else
-                            float(response_spectrum(gm, period * time_scale, 0.05).psa), gm.pga)
+                            spectral_acceleration(gm, period * time_scale), gm.pga)
                 if gm.pga == 0.0 or known[c][0] == 0.0:
                     raise ValueError(f"record {c.label} has zero intensity and cannot be "
                                      "scaled.")
             comp_sa.append(known[c][0])
             comp_pga.append(known[c][1])
-        pga.append(float(np.prod(comp_pga)) ** (1.0 / len(comp_pga)))
-        sa.append(None if period is None else float(np.prod(comp_sa)) ** (1.0 / len(comp_sa)))
+        pga.append(geometric_mean(comp_pga))
+        sa.append(None if period is None else geometric_mean(comp_sa))
         parts.append(tuple(comp_sa))
     return tuple(sa), tuple(pga), tuple(parts)
 
