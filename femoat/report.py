@@ -50,8 +50,9 @@ def format_table(rows):
     return "\n".join(lines)
 
 
-def write_outputs(runs, motion, folder, damping, figures=True):
-    """Figures, summary CSV and per-run impact tables into ``folder``; returns the paths."""
+def write_outputs(runs, motion, folder, damping, figures=True, notes=()):
+    """Figures, summary CSV and per-run impact tables into ``folder``; returns the paths.
+    ``notes``: lines on the motion for README.txt (e.g. how it was scaled to Sa(T))."""
     folder = Path(folder)
     rows = summary_rows(runs)
     buf = io.StringIO()
@@ -91,6 +92,7 @@ def write_outputs(runs, motion, folder, damping, figures=True):
     write_text(folder / "README.txt", (
         f"femoat paper study, C_imp = {damping}\n"
         f"motion: {motion.name}, PGA {motion.pga:.3f} g, dt {motion.dt} s\n"
+        + "".join(f"  {note}\n" for note in notes) +
         "units: kip, in, s; accelerations in g\n"
         "solver_seconds: CPU time of each run's compiled loop; compile_seconds: start-up (numba "
         "compilation or kernel loading) paid once per process, before its first run\n\n"

@@ -19,7 +19,8 @@ import pytest
 from conftest import run_python
 
 from femoat.plotting.plan_history import PlanHistory
-from femoat.render.plan import PlanViewLayout, plan_camera, plan_frames, wall_rectangles
+from femoat.render.plan import (AXIS_TITLES, PlanViewLayout, plan_annotations, plan_camera,
+                                plan_frames, wall_rectangles)
 
 SETUP = textwrap.dedent("""
     import numpy as np
@@ -56,8 +57,11 @@ def test_frames_decimate_the_orbit(history):
     h = PlanHistory(history.time, history.base, spike, history.gaps)
     g = plan_frames(h, fps=10, speed=1.0, end=3.5)
     assert np.flatnonzero(g["contact"][:, 1]).tolist() == [16] and g["force"][16, 1] == 7.0
-    with pytest.raises(ValueError, match="more than max_frames"):
+    with pytest.raises(ValueError, match="more than max_frames") as err:
         plan_frames(history, fps=1000)
+    # the error names every option that fixes it, as femoat render run spells them
+    for option in ("--speed", "--fps", "--start/--end", "--max-frames"):
+        assert option in str(err.value)
     with pytest.raises(ValueError, match="start = 2.0 and end = 1.0"):
         plan_frames(history, start=2.0, end=1.0)
     with pytest.raises(ValueError, match="fps = 0 must be a positive number"):
@@ -72,11 +76,63 @@ def test_walls_stand_at_their_gaps(history):
     assert rect["+x"] == (24.0, 30.0, -19.0, 19.0)
     assert rect["-y"] == (-30.0, 30.0, -25.0, -19.0)
     cam = plan_camera(history, lay, window_size=(400, 400))
-    # Everything fits in x ∈ [−30, 30], y ∈ [−25, 25]: centred at 0; a square window shows the
-    # larger half-extent, 30 in, with a 25 % margin: half-height 37.5 in.
-    assert cam == dict(center=(0.0, 0.0), parallel_scale=37.5)
+    # The walls fill x ∈ [−30, 30], y ∈ [−25, 25]; the labels stand one thickness beyond,
+    # x = ±36, y = ±31, the axes two below and left, y = −25 − 12 = −37, x = −30 − 12 = −42:
+    # x ∈ [−42, 36], y ∈ [−37, 31], centred at (−3, −3); a square window shows the larger
+    # half-extent, 39 in, with a 25 % margin: half-height 48.75 in.
+    assert cam == dict(center=(-3.0, -3.0), parallel_scale=48.75)
     with pytest.raises(ValueError, match="PlanViewLayout.width = -1"):
         PlanViewLayout(width=-1)
+
+
+def test_walls_are_labelled_by_side_and_the_axes_span_the_moat_in_inches(history):
+    # the same moat: outer faces at x = ±30, y = ±25 [in], walls 6 in thick
+    notes = plan_annotations(history, PlanViewLayout(width=40.0, depth=30.0))
+    # each wall's label is its outward normal, one thickness (6 in) beyond its outer face, on
+    # its middle line
+    assert notes["labels"] == {"+x": ("+x", (36.0, 0.0)), "-x": ("\u2212x", (-36.0, 0.0)),
+                               "+y": ("+y", (0.0, 31.0)), "-y": ("\u2212y", (0.0, -31.0))}
+    # the x axis runs left to right 12 in below the moat with ticks −30 ... 30 in, the y axis
+    # top to bottom 12 in to its left with ticks 25 ... −25 in
+    assert notes["x_axis"] == ((-30.0, -37.0), (30.0, -37.0), (-30.0, 30.0))
+    assert notes["y_axis"] == ((-42.0, 25.0), (-42.0, -25.0), (25.0, -25.0))
+    assert AXIS_TITLES == ("x [in]", "y [in]")
+    # a moat without its −x wall labels the three walls it has
+    h = PlanHistory(history.time, history.base, history.wall_force[:, [0, 2, 3]],
+                    (4.0, 4.0, 4.0), sides=("+x", "+y", "-y"))
+    assert sorted(plan_annotations(h)["labels"]) == ["+x", "+y", "-y"]
+
+
+def test_a_frame_draws_the_wall_labels_and_the_axes(tmp_path, render_backend):
+    script = SETUP + textwrap.dedent("""
+        import json
+        import numpy as np
+        from femoat.render.plan import (plan_annotations, plan_camera, plan_scene,
+                                        world_to_pixel)
+        size = (320, 320)
+        plotter, parts = plan_scene(history, window_size=size)
+        image = plotter.screenshot(return_img=True)
+        plotter.close()
+        cam = plan_camera(history, window_size=size)
+        dark = {}
+        for side, (text, (x, y)) in plan_annotations(history)["labels"].items():
+            col, row = world_to_pixel(cam, size, x, y)
+            box = image[row - 8:row + 9, col - 12:col + 13]
+            dark[side] = int((box.max(axis=2) < 80).sum())  # black text pixels around it
+        print(json.dumps(dict(labels=parts["labels"], dark=dark,
+                              titles=[a.GetTitle() for a in parts["axes"]],
+                              ranges=[list(a.GetRange()) for a in parts["axes"]])))
+    """)
+    done = run_python(script, tmp_path)
+    assert done.returncode == 0, done.stderr[-3000:]
+    info = json.loads(done.stdout.strip().splitlines()[-1])
+    # the frame's labels are the four sides, the minus typographic; the axes titled in inches
+    # over the moat's outer faces: x from −(20 + 4 + 6) = −30 to 30, y from 30 down to −30
+    assert info["labels"] == {"+x": "+x", "-x": "\u2212x", "+y": "+y", "-y": "\u2212y"}
+    assert info["titles"] == ["x [in]", "y [in]"]
+    assert info["ranges"] == [[-30.0, 30.0], [30.0, -30.0]]
+    # each label is drawn where plan_annotations puts it: dark text on the white margin
+    assert all(n > 5 for n in info["dark"].values()), info["dark"]
 
 
 def test_plan_animation_flashes_the_wall_in_contact(tmp_path, render_backend, history):
@@ -146,3 +202,11 @@ def test_femoat_render_run_draws_a_plan_run_in_top_view(tmp_path, render_backend
 
     gif = Image.open(tmp_path / "plan.gif")
     assert gif.n_frames == 15 and gif.size == (200, 200)
+
+
+def test_femoat_render_help_names_the_plan_top_view(capsys):
+    from femoat.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["render", "--help"])
+    assert "top view" in capsys.readouterr().out

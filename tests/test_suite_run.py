@@ -252,10 +252,10 @@ def _verdict_table(stdout):
         if not line.strip():
             break
         rows.append(line.split())
-    heads = ["variation", "records", "runs", "collapsed", "failed", "S_CT [g]", "CMR [-]",
-             "SSF [-]", "ACMR [-]", "ACMR10% [-]", "ACMR20% [-]"]
+    heads = ["variation", "records", "analyses", "runs", "collapsed", "failed", "S_CT [g]",
+             "CMR [-]", "SSF [-]", "ACMR [-]", "ACMR10% [-]", "ACMR20% [-]"]
     # headings with a space ("S_CT [g]") split in two; the verdict may have spaces
-    return [dict(zip(heads, r[:11]), verdict=" ".join(r[11:])) for r in rows[1:]]
+    return [dict(zip(heads, r[:12]), verdict=" ".join(r[12:])) for r in rows[1:]]
 
 
 def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys):

@@ -10,7 +10,8 @@
 and the contact time of the base mat on the wall, or ``--modes``), runs the building with it on
 both sides (the scenario's building, law, gap and motion, or the paper model under the first 4 s
 of Erzincan), and draws the wall's deformed shape at the peak impact. ``render run`` animates a
-run (a saved run.npz, or a scenario that is run first) as a GIF.
+run (a saved run.npz, or a scenario that is run first) as a GIF; a building in plan in top view
+(the base mat moving in its moat, each wall red while in contact).
 
 Headless machines: set VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow.
 """
@@ -23,7 +24,8 @@ from femoat.walls import kinds
 def add_parser(sub):
     p = sub.add_parser(
         "render",
-        help="pictures of runs: the wall at the peak impact (PNG), a run animation (GIF)",
+        help="pictures of runs: the wall at the peak impact (PNG), a run animation (GIF; a "
+        "building in plan: the top view of the base mat in its moat)",
         description=__doc__.split("\n\n")[2].replace("\n", " "),
     )
     what = p.add_subparsers(dest="what", metavar="WHAT")
@@ -67,7 +69,8 @@ def add_parser(sub):
                    help="also save the building run (.npz) for 'femoat render run'")
 
     r = what.add_parser(
-        "run", help="animated GIF of a building run: base mat, floors, both walls",
+        "run", help="animated GIF of a building run: base mat, floors, both walls; a plan run in "
+        "top view",
         description="Animate a run (a plan run in top view; a run.npz written by 'femoat run' or 'femoat render wall "
         "--save-run', or a scenario TOML that is run first). Only the frames shown are computed.")
     r.add_argument("source", type=Path, help="run .npz or scenario .toml")

@@ -51,9 +51,9 @@ def _fmt(value):
     return str(value)
 
 
-def _plan_outputs(result, out, figures):
+def _plan_outputs(result, out, figures, title=""):
     """A plan run's impact table (impacts.csv) and figures (the base mat's orbit in the moat,
-    the impact force per wall): the paths written."""
+    the impact force per wall; ``title`` theirs): the paths written."""
     import csv
 
     from femoat.atomic import atomic_path
@@ -70,7 +70,7 @@ def _plan_outputs(result, out, figures):
         from femoat.plotting.plan_figures import plot_plan_impact_forces, plot_plan_orbit
         from femoat.plotting.plan_history import PlanHistory
 
-        history = PlanHistory.from_result(result, title=result.meta["info"].get("motion", ""))
+        history = PlanHistory.from_result(result, title=title)
         for plot, name in ((plot_plan_orbit, "plan_orbit.png"),
                            (plot_plan_impact_forces, "plan_impact_forces.png")):
             plot(history, out / name)  # (writes the file, returns the figure)
@@ -86,6 +86,15 @@ def run(args):
 
     sc = load_scenario(args.scenario)
     out = args.out or sc.output_folder
+    echo = []
+    if sc.plan:  # what runs, before it runs (a default moat said loudly)
+        from femoat.plan_report import model_echo
+
+        echo = model_echo(sc.model, sc.motion, "moat" in sc.source, sc.intensity)
+        if not args.json:
+            print("\n".join(echo))
+    elif sc.intensity is not None and not args.json:  # the factor, before the run
+        print(f"motion: {sc.motion.name}, {sc.intensity.describe()}")
     from femoat.compilation.warmup import warm_up
 
     startup = warm_up()  # compile / load the kernels outside the run's timed loop
@@ -98,7 +107,12 @@ def run(args):
     result.meta["compile_seconds"] = startup
     result.save(out / "run.npz")
     if sc.plan:
-        paths = _plan_outputs(result, out, figures=sc.figures and not args.no_figures)
+        from femoat.plan_report import figure_title, write_plan_summary
+
+        paths = _plan_outputs(result, out, figures=sc.figures and not args.no_figures,
+                              title=figure_title(sc.model, sc.motion))
+        paths += write_plan_summary(result, sc.model, sc.motion, out, "moat" in sc.source,
+                                    written=[out / "run.npz", *paths], scaling=sc.intensity)
     else:
         from femoat.report import write_outputs
 
@@ -106,7 +120,8 @@ def run(args):
         wall = sc.wall_label
         # (the figures include global_response.png, drawn once)
         paths = write_outputs({(wall, law): result}, sc.motion, out, "scenario",
-                              figures=sc.figures and not args.no_figures)
+                              figures=sc.figures and not args.no_figures,
+                              notes=[sc.intensity.describe()] if sc.intensity else ())
     # cpu_seconds is the solver's loop only; compile_seconds the start-up paid before it
     summary = {**result.peaks, "compile_seconds": startup}
     if result.collapse is not None:
@@ -116,7 +131,9 @@ def run(args):
     written = [out / "run.npz", *paths]
     if args.json:
         print(json.dumps({**summary, "units": {k: unit_of(k) for k in summary},
-                          "written": [str(p) for p in written]}))
+                          "written": [str(p) for p in written],
+                          **({"model": echo} if echo else {}),
+                          **({"scaling": sc.intensity._asdict()} if sc.intensity else {})}))
     else:
         for k, v in summary.items():
             if k == "runaway":  # the run ended early: say so in a sentence

@@ -80,24 +80,33 @@ def print_verdict(out, options, as_json=False, extra=None, write=True, force=Fal
         table, meta = rp.load(out)
         if write:
             paths = rp.run_report(out, table, meta, **options)
+    onsets = None
     if write:
         summary = pd.read_csv(Path(out) / "report" / "collapse_summary.csv")
+        if (Path(out) / "report" / "pounding_fragility.csv").is_file():
+            onsets = pd.read_csv(Path(out) / "report" / "pounding_fragility.csv")
     inputs = rp.p695_inputs(meta, **options)
     meta = {**meta, "im_kind": meta.get("im_kind") or "sa"}
     basis = margin_basis(meta, inputs)
     if not write:
         summary = rp.collapse_summary(table, meta, inputs)
+        onsets = rp.pounding_summary(table, meta, inputs)
     if as_json:
         rows = [{k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
                 for r in summary.to_dict(orient="records")]
         units = {"elapsed": "s", "runs_per_second": "1/s", "stored": "runs",
-                 "verdict": "units in each key, as in collapse_summary.csv"}
+                 "verdict": "units in each key, as in collapse_summary.csv",
+                 "pounding": "units in each key, as in pounding_fragility.csv"}
+        pound = [] if onsets is None else [
+            {k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
+            for r in onsets.to_dict(orient="records")]
         print(json.dumps({**(extra or {}), "stored": counts(table),
                           "p695_inputs": inputs.statements(),
-                          "S_MT [g]": basis.smt, "verdict": rows, "units": units}, default=str))
+                          "S_MT [g]": basis.smt, "verdict": rows, "pounding": pound,
+                          "units": units}, default=str))
     else:
         where = f"report in {Path(out) / 'report'}" if write else f"results in {out}"
-        print(verdict_text(table, summary, inputs, basis, where), end="")
+        print(verdict_text(table, summary, inputs, basis, where, onsets), end="")
     return paths
 
 

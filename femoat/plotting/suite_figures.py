@@ -105,23 +105,37 @@ def plot_fragilities(panels, path, im_label, s_mt=None):
     _save(fig, path, plt)
 
 
-def plot_pounding_probability(curves, path, im_label, s_mt=None):
-    """P(pounding) against intensity, one line per distinct curve: ``curves`` = [(labels,
-    im [g], probability)], the labels of the variations sharing the curve."""
+WALL_TITLES = {"any": "any wall", "pos": "wall pos (+)", "neg": "wall neg (-)",
+               "px": "wall +x", "mx": "wall -x", "py": "wall +y", "my": "wall -y"}
+
+
+def plot_pounding_probability(panels, path, im_label, s_mt=None):
+    """P(pounding) against intensity, a panel per wall: ``panels`` = [(wall key, [(labels,
+    im [g], fraction pounding [-], θ [g], β [-])])], one line per distinct curve (the labels of
+    the variations sharing it): the fractions as markers, the fitted lognormal onset as a line
+    (none where θ is NaN)."""
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
-    for i, (labels, im, p) in enumerate(curves):
-        text = ", ".join(labels) if len(labels) <= 3 else \
-            f"{len(labels)} variations: {labels[0]}, ..., {labels[-1]}"
-        ax.plot(im, p, marker="o", ms=3, lw=1.2, color=f"C{i % 10}",
-                linestyle=_LINESTYLES[(i // 10) % 4], label=text)
-    if s_mt:
-        ax.axvline(s_mt, color="k", lw=0.8, ls="--", label=f"S_MT = {s_mt:.2f} g")
-    ax.set_xlabel(im_label)
-    ax.set_ylabel("fraction of records that pound [-]")
-    ax.set_ylim(-0.02, 1.02)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    fig, axes = _grid(plt, len(panels), width=3.4, height=3.0)
+    for ax, (wall, curves) in zip(axes, panels):
+        top = max((im.max() for _, im, *_ in curves if im.size), default=1.0) * 1.1
+        x = np.linspace(top / 200, top, 200)
+        for i, (labels, im, p, theta, beta) in enumerate(curves):
+            text = ", ".join(labels) if len(labels) <= 3 else \
+                f"{len(labels)} variations: {labels[0]}, ..., {labels[-1]}"
+            style = dict(color=f"C{i % 10}", linestyle=_LINESTYLES[(i // 10) % 4])
+            if np.isfinite(theta) and np.isfinite(beta) and beta > 0:
+                text += f" (theta {theta:.2f} g, beta {beta:.2f})"
+                ax.plot(x, ndtr(np.log(x / theta) / beta), lw=1.2, **style)
+            ax.plot(im, p, marker="o", ms=3, lw=0, label=text, color=style["color"])
+        if s_mt:
+            ax.axvline(s_mt, color="k", lw=0.8, ls="--", label=f"S_MT = {s_mt:.2f} g")
+        ax.set_title(WALL_TITLES.get(wall, wall), fontsize=9)
+        ax.set_xlabel(im_label)
+        ax.set_xlim(0, top)
+        ax.set_ylim(-0.02, 1.02)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6)
+    axes[0].set_ylabel("fraction of records that pound [-]")
     _save(fig, path, plt)
 
 

@@ -63,9 +63,12 @@ def frame_times(t, fps, speed, start, end, max_frames):
     step = speed / fps
     n = int(np.floor((end - start) / step + 1e-9)) + 1
     if n > max_frames:
+        need = (end - start) * fps / max_frames
         raise ValueError(f"{n} frames for {end - start:.3g} s at fps {fps:g} and speed {speed:g}: "
-                         f"more than max_frames = {max_frames}; raise speed, lower fps or show a "
-                         "shorter [start, end]")
+                         f"more than max_frames = {max_frames}; raise --speed (e.g. --speed "
+                         f"{max(need, speed * 1.01):.3g}), lower --fps, show a shorter "
+                         "--start/--end window or raise --max-frames (femoat render run; in "
+                         "Python: speed, fps, start, end, max_frames)")
     return start + step * np.arange(n)
 
 

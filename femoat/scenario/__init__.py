@@ -33,8 +33,10 @@ Relative paths are relative to the scenario file. The tables and their keys (:da
     source: "erzincan" (the paper's record) | "at2" | "text" | "fema"; path: the record file
     (at2, text); dt [s], units, column, skip_rows (text); record_set, record_id, component
     (fema); pga [g]: scale the record to this PGA (left out: the record's own, or the paper's
-    for Erzincan); time_scale [-]: similitude factor on time; extra_time [s] of free vibration
-    after the record.
+    for Erzincan); or sa [g] with period [s]: scale it to this 5 %-damped Sa(T), T the
+    prototype's period (:mod:`.intensity`, as suites scale; the factor is echoed; not with
+    pga); time_scale [-]: similitude factor on time; extra_time [s] of free vibration after
+    the record.
 ``[solver]`` an :class:`~femoat.integration.settings.Integrator`: method ("dp5": fifth order
     while the gaps are open, Newmark in contact; "newmark": Newmark/HHT-α throughout), rtol,
     alpha, max_step [s] (left out: the record's sample interval), min_step [s], newton_tol,
@@ -68,7 +70,9 @@ the same.
     path_y; pad: extend the shorter with zeros); angle [deg], the pair turned in plan from +x
     toward +y; scale [-], one factor for both components; or pga [g], the target of the
     geometric mean of the two components' PGAs as recorded (FEMA P695's mean; not with scale);
-    time_scale, extra_time [s] as for one record.
+    or sa [g] with period [s], the target of the geometric mean of the two components' Sa(T)
+    as recorded, as suites of pairs scale (not with scale, normalized or pga); time_scale,
+    extra_time [s] as for one record.
 
 ``examples/my_building.toml`` is a complete file, ``examples/plan_building.toml`` a complete plan
 file.

@@ -59,6 +59,8 @@ class Scenario:
     figures : bool  whether it draws the figures
     source : dict  the parsed TOML document
     wall_label : str  the walls' name in reports: the preset, with "FE" for a finite-element wall
+    intensity : SaScaling or None  how ``[motion] sa`` scaled the record to Sa(T) (the factor,
+        echoed by ``femoat run``); None without ``sa``
     """
 
     model: PoundingModel
@@ -70,6 +72,7 @@ class Scenario:
     figures: bool
     source: dict
     wall_label: str
+    intensity: object = None
 
     @property
     def plan(self):
@@ -91,7 +94,10 @@ def defaults(plan=False):
         out.update(moat=moat.defaults(), motion=pair.defaults())
     else:
         out.update(walls=walls.defaults(), motion=motion.defaults())
-    return {**out, "solver": solver.defaults(), "output": dict(OUTPUT_DEFAULTS)}
+    solver_table = solver.defaults()
+    if plan:  # a plan run's own method (the explicit open phase is refused in plan)
+        solver_table["method"] = PLAN_METHOD
+    return {**out, "solver": solver_table, "output": dict(OUTPUT_DEFAULTS)}
 
 
 def model_from_dict(d, base_dir=Path(".")):
@@ -124,6 +130,14 @@ def integrator_for(model, table):
     table = dict(table)
     if isinstance(model, PlanModel):
         table.setdefault("method", PLAN_METHOD)
+        from femoat.integration import methods
+
+        if table["method"] in methods.CODES and methods.module(table["method"]).EXPLICIT:
+            raise ValueError(
+                f"[solver] method = {table['method']!r}: a plan run cannot use the explicit "
+                "open phase (on a curved orbit its stages read the friction direction only to "
+                f"first order, docs/plan.md §10); write method = \"{PLAN_METHOD}\" in "
+                "[solver] or leave method out (a plan file's default).")
     return solver.solver_from_dict(table)
 
 def scenario_from_dict(d, base_dir=Path(".")):
@@ -133,14 +147,14 @@ def scenario_from_dict(d, base_dir=Path(".")):
     motion_d = subtable(d, "motion", "scenario")
     plan = not isinstance(model, PoundingModel)
     if plan:
-        ground = pair.pair_from_dict(motion_d, base_dir)
+        ground, scaled = pair.pair_and_scaling_from_dict(motion_d, base_dir)
         label = moat.wall_label(subtable(d, "moat", "scenario"))
     else:
         stray = sorted(set(motion_d) & set(pair.KEYS) - set(motion.KEYS))
         if stray:
             raise ValueError(f"[motion] {', '.join(stray)}: a record pair's key; add plan = true "
                              "to [building] for a plan scenario (or remove the key).")
-        ground = motion.motion_from_dict(motion_d, base_dir)
+        ground, scaled = motion.motion_and_scaling_from_dict(motion_d, base_dir)
         walls_d = subtable(d, "walls", "scenario")
         label = str(walls_d.get("preset", walls.defaults()["preset"])) + \
             (" FE" if "fe" in walls_d else "")
@@ -151,7 +165,7 @@ def scenario_from_dict(d, base_dir=Path(".")):
     collapse = solver.collapse_from_dict(subtable(d, "collapse", "scenario")) \
         if "collapse" in d else None
     return Scenario(model=model, motion=ground, integrator=integ, extra_time=extra_time,
-                    collapse=collapse, wall_label=label,
+                    collapse=collapse, wall_label=label, intensity=scaled,
                     output_folder=Path(text(out, "folder", OUTPUT_DEFAULTS["folder"], "[output]")),
                     figures=flag(out, "figures", OUTPUT_DEFAULTS["figures"], "[output]"),
                     source=d)

@@ -1,5 +1,8 @@
 """``[motion]``: the ground motion, scaled and time-scaled, and the free vibration after it.
 
+Amplitude: ``pga`` [g], the record scaled to this PGA, or ``sa`` [g] with ``period`` [s], the
+record scaled to this Sa(T) (:mod:`femoat.scenario.intensity`, as suites scale); not both.
+
 Defaults: the paper's record (Erzincan N-S at :data:`~femoat.ground_motions.PAPER_PGA`,
 time-scaled as :func:`~femoat.ground_motions.erzincan_paper`), :func:`femoat.run.run`'s
 ``extra_time``, :func:`~femoat.ground_motions.read_text`'s units and column; other records
@@ -9,11 +12,12 @@ scenario's own (:data:`OWN_DEFAULTS`).
 
 from pathlib import Path
 
+from femoat.scenario import intensity
 from femoat.scenario.reading import (check_keys, integer, naming, number, one_of,
                                      parameter_default, resolve, text)
 
 KEYS = ("source", "path", "dt", "units", "record_set", "record_id", "component", "pga",
-        "time_scale", "extra_time", "column", "skip_rows")
+        *intensity.KEYS, "time_scale", "extra_time", "column", "skip_rows")
 SOURCES = ("erzincan", "at2", "text", "fema")
 
 OWN_DEFAULTS = dict(source="erzincan", record_set="farfield", record_id=1, component="a")
@@ -33,6 +37,12 @@ def defaults():
 
 def motion_from_dict(d, base_dir=Path(".")):
     """The ground motion from the ``[motion]`` table (scaled and time-scaled)."""
+    return motion_and_scaling_from_dict(d, base_dir)[0]
+
+
+def motion_and_scaling_from_dict(d, base_dir=Path(".")):
+    """(the ground motion, its :class:`~femoat.scenario.intensity.SaScaling` or None): the
+    ``[motion]`` table's record and, with ``sa``, how it was scaled to Sa(T) (echoed)."""
     d = dict(d)
     where = "[motion]"
     check_keys(d, KEYS, where)
@@ -74,17 +84,22 @@ def _motion(d, base_dir, where):
     else:
         raise ValueError(f"[motion] source = {source!r}: use {one_of(SOURCES)}.")
     default = defaults() if erzincan else dict(pga=None, time_scale=1.0)
-    pga = number(d, "pga", default["pga"], where, "g") if erzincan or "pga" in d else None
+    ts = number(d, "time_scale", default["time_scale"], where)
+    scaling = intensity.sa_scaling(d, (gm.time_scaled(ts) if ts != 1.0 else gm,), ts, where,
+                                   replaces=("pga",))
+    if scaling is not None:
+        gm = gm.scaled(scaling.factor)
+    pga = number(d, "pga", default["pga"], where, "g") \
+        if scaling is None and (erzincan or "pga" in d) else None
     if pga is not None:
         if pga <= 0.0:
             raise ValueError(f"[motion] pga = {d['pga']!r}: expected a positive target PGA "
                              f"[g], e.g. pga = {gmod.PAPER_PGA} (omit it to keep the record's "
                              "own amplitude).")
         gm = gm.scaled_to_pga(pga)
-    ts = number(d, "time_scale", default["time_scale"], where)
     if ts != 1.0:
         gm = gm.time_scaled(ts)
-    return gm
+    return gm, scaling
 
 
 def _path(d, base_dir):

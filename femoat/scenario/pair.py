@@ -12,7 +12,9 @@ which sets the factor so that the **geometric mean of the two components' PGAs**
 (before any rotation), is ``pga``: √(PGA_x·PGA_y)·scale = pga, the geometric mean P695 uses for
 a record's intensity (its NF is PGV-based on the same mean), and independent of the angle, so a
 pair is scaled once and applied at any orientation. ``pga`` replaces ``scale`` and
-``normalized``.
+``normalized``. Or ``sa`` [g] with ``period`` [s]: the factor that brings the **geometric mean
+of the two components' Sa(T)**, as recorded, to ``sa``, as a suite of pairs scales its records
+(:mod:`femoat.scenario.intensity`); it replaces ``scale``, ``normalized`` and ``pga``.
 
 Defaults: the pair's own (:class:`RecordPair`'s angle and scale, :func:`fema_p695_pair`'s
 ``normalized``, :func:`read_at2_pair`'s ``pad``), the 1D ``[motion]``'s FEMA record choice and
@@ -22,12 +24,12 @@ free vibration, and the scenario's own source (:data:`OWN_DEFAULTS`).
 import math
 from pathlib import Path
 
-from femoat.scenario import motion
+from femoat.scenario import intensity, motion
 from femoat.scenario.reading import (check_keys, field_default, flag, integer, naming, number,
                                      one_of, parameter_default, resolve, text)
 
 KEYS = ("source", "record_set", "record_id", "normalized", "path_x", "path_y", "pad", "angle",
-        "scale", "pga", "time_scale", "extra_time")
+        "scale", "pga", *intensity.KEYS, "time_scale", "extra_time")
 SOURCES = ("fema", "at2")
 
 OWN_DEFAULTS = dict(source="fema", time_scale=1.0)
@@ -52,6 +54,12 @@ def defaults():
 def pair_from_dict(d, base_dir=Path(".")):
     """The :class:`~femoat.ground_motions.RecordPair` of a plan scenario's ``[motion]`` table
     (turned, scaled and time-scaled)."""
+    return pair_and_scaling_from_dict(d, base_dir)[0]
+
+
+def pair_and_scaling_from_dict(d, base_dir=Path(".")):
+    """(the pair, its :class:`~femoat.scenario.intensity.SaScaling` or None): the plan
+    ``[motion]`` table's pair and, with ``sa``, how it was scaled to Sa(T) (echoed)."""
     from femoat import ground_motions as gmod
 
     d = dict(d)
@@ -64,6 +72,10 @@ def pair_from_dict(d, base_dir=Path(".")):
     check_keys(d, KEYS, where)
     default = defaults()
     angle = number(d, "angle", default["angle"], where, "deg")
+    if not 0.0 <= angle < 360.0:
+        raise ValueError(f"{where} angle = {angle:g}: an orientation in [0, 360) [deg] "
+                         f"(positive from +x toward +y); write angle = {angle % 360.0:g} for "
+                         "the same turn.")
     source = text(d, "source", default["source"], where)
     if source not in SOURCES:
         raise ValueError(f"{where} source = {source!r}: a pair's source is {one_of(SOURCES)}.")
@@ -83,13 +95,15 @@ def pair_from_dict(d, base_dir=Path(".")):
         paths = [_path(d, key, base_dir) for key in ("path_x", "path_y")]
         with naming(f"{where} path_x, path_y (pad = {str(pad).lower()}):"):
             pair = gmod.read_at2_pair(*paths, pad=pad)
-    scale = _scale(d, pair, default, where)
     x, y = pair.x, pair.y
     ts = number(d, "time_scale", default["time_scale"], where)
     with naming(where):
         if ts != 1.0:
             x, y = x.time_scaled(ts), y.time_scaled(ts)
-        return gmod.RecordPair(x, y, angle, scale, pair.name)
+        scaling = intensity.sa_scaling(d, (x, y), ts, where,
+                                       replaces=("scale", "normalized", "pga"))
+        scale = scaling.factor if scaling is not None else _scale(d, pair, default, where)
+        return gmod.RecordPair(x, y, angle, scale, pair.name), scaling
 
 
 def _scale(d, pair, default, where):

@@ -120,7 +120,8 @@ def numbers(d, key, default, where, unit):
 @contextlib.contextmanager
 def naming(where):
     """Prefix the table to a ValueError raised by the objects a table builds (their messages name
-    the parameter, e.g. "gap = -1.0 must be ..."; a file reader's error names its file)."""
+    the parameter, e.g. "gap = -1.0 must be ..."; a file reader's error names its file), its
+    fix phrased in the file's keys (:data:`FILE_WORDS`)."""
     from femoat.ground_motions import RecordFormatError
 
     try:
@@ -130,7 +131,21 @@ def naming(where):
     except (ValueError, OverflowError) as exc:  # OverflowError: int(inf) in a check
         if isinstance(exc, ValueError) and str(exc).startswith("["):  # already names its table
             raise
-        raise ValueError(f"{where} {exc}") from None
+        raise ValueError(f"{where} {in_file_words(str(exc))}") from None
+
+
+FILE_WORDS = {
+    "(read_at2_pair(..., pad=True))": "(pad = true in [motion])",
+    "Integrator(method='newmark')": "method = \"newmark\" in [solver]",
+}
+"""A Python call a library message names as its fix: the scenario file's key that does it."""
+
+
+def in_file_words(message):
+    """``message`` with each fix of :data:`FILE_WORDS` in the file's words."""
+    for python, key in FILE_WORDS.items():
+        message = message.replace(python, key)
+    return message
 
 
 def numeric_table(table, cls, where):

@@ -210,7 +210,7 @@ def suite_from_dict(d, base_dir=Path(".")):
                                        base_dir, plan))
 
     tables = {k: d[k] for k in var.MODEL_TABLES if k in d}
-    varied, combos = var.variations_from_dict(d.get("variations", {}))
+    varied, combos = var.variations_from_dict(d.get("variations", {}), plan)
     n_stories = 0
     for combo in combos:
         try:

@@ -53,8 +53,14 @@ def collapse_row(rows, use, policy, ida, basis):
         notes.append(f"fewer than half collapsed: S_CT >= {s_ct:.3g} g"
                      + (", so CMR and ACMR are lower bounds and P(collapse|MCE) beta_TOT an "
                         "upper bound" if smt is not None else ""))
+    n_analyses = int(rows.groupby(st.record_keys(rows), dropna=False).ngroups)
+    n_records = int(rows.groupby(st.pair_keys(rows), dropna=False).ngroups)
+    if n_analyses > n_records:
+        notes.append(f"a record is a pair: {n_records} pairs at {n_analyses // n_records} "
+                     f"angles = {n_analyses} analyses (FEMA P695 3D: S_CT over the analyses, "
+                     "each pair weighing the same)")
     row = {"method": "ida" if ida else "stripes",
-           "n_records": int(rows.groupby(st.record_keys(rows), dropna=False).ngroups),
+           "n_records": n_records, "n_analyses": n_analyses,
            "n_runs": len(use), "n_collapsed": n_col, "n_censored": n_cens,
            "n_solver_failures": int((rows["status"] == "solver_failure").sum()),
            "n_errors": int((rows["status"] == "error").sum()),

@@ -8,6 +8,7 @@ runs' median intensity without one), and end in what applies only with a margin:
 
 from femoat.suite import policies
 from femoat.suite.scaling import describe
+from femoat.suite.statistics import RECORD_RULE
 
 FILES = {
     "collapse_summary.csv": "one row per variation: counts (records, runs, collapses, censored "
@@ -16,20 +17,32 @@ FILES = {
     "and a failed check reads 'inconclusive'), the fitted lognormal theta [g] and beta [-], "
     "S_CT had every solver failure been a collapse (the sensitivity to the policy), S_MT, CMR, "
     "SSF, ACMR, mu_T, beta_TOT, the acceptable ACMR10% and ACMR20%, P(collapse|MCE) from the "
-    "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_collapsed counts "
-    "records (IDA) or runs (stripes). Read the verdict column first; the note says why a "
+    "fitted fragility and from beta_TOT, pass/fail, the verdict and notes. n_records counts "
+    "records (a plan suite's pairs), n_analyses the records at each angle; n_collapsed counts "
+    "analyses (IDA) or runs (stripes). Read the verdict column first; the note says why a "
     "number is missing or bounded.{no_margin}",
     "response_by_variation.csv": "per variation and intensity: records (IDA: a record that "
     "collapsed below the intensity counts as collapsed there; stripes: runs), collapses and, "
     "over the runs that did not collapse, the median and lognormal dispersion (std of ln over "
     "the positive values) across records of the peak impact force [kip] (max over the walls), "
     "peak wall displacement [in], peak base (isolator) displacement [in], peak drift ratio [-] "
-    "and peak floor acceleration [g]; the probability of pounding counts every run, collapsed "
-    "or not. A dispersion near or above 1 means the runs mix very different responses.",
-    "pounding_probability.csv": "per variation and intensity: the fraction of runs (records) "
-    "with any impact, then with an impact on each wall (pos, neg: the walls on the positive "
-    "and negative side; a plan suite's px, mx, py, my: the +x, -x, +y, -y walls). In a plan "
-    "suite a record is a pair at one angle, and its base displacement is measured in plan.",
+    "and peak floor acceleration [g] (the probability of pounding is in "
+    "pounding_probability.csv). A dispersion near or above 1 means the runs mix very different responses.",
+    "pounding_probability.csv": "per variation, wall (any wall first, then each wall: pos, neg "
+    "the walls on the positive and negative side; a plan suite's px, mx, py, my the +x, -x, "
+    "+y, -y walls) and intensity: every analysis (a record; in a plan suite a pair at one of "
+    "its angles) counted once, its state read from its own trace (its runs in intensity order): n_pounded (it pounded on that wall at or below the "
+    "intensity: once pounding, pounding above), n_collapsed (it collapsed before it touched "
+    "that wall: its own category, never 'did not pound'), n_beyond (the intensity is above "
+    "its last run: unknown), n_not_pounded, and P(pounding) = n_pounded / n_analyses, which "
+    "never falls as the intensity grows.",
+    "pounding_fragility.csv": "per variation and wall (any first): the onset of pounding as "
+    "a fragility, read like the collapse: a record's onset is the lowest intensity at which it "
+    "pounded on the wall (the upper end of its bracket), a record that never pounded is "
+    "right-censored at its highest run with neither pounding nor collapse (also when it "
+    "collapsed before touching the wall: n_collapsed_first); the empirical median onset [g], "
+    "the fitted lognormal theta [g] and beta [-] (IDA: maximum likelihood of the onsets; "
+    "stripes: binomial over pounded / (pounded + not pounded) per stripe){at_smt_pounding}.",
     "responses_near_mce.csv": "at the intensity nearest {ref}, per variation, the runs that "
     "pounded and those that did not, apart: their number and the median and dispersion of each "
     "response (runs that collapsed left out). Without pounding the impact force is zero and "
@@ -39,9 +52,11 @@ FILES = {
     "below each collapse intensity; stripes: fraction per stripe) and the fitted lognormal, "
     "with the counts and theta, beta in the legend. A curve to the right is a larger "
     "margin.{at_smt_fragility}",
-    "pounding_probability.png": "fraction of records that pound against intensity, one line "
-    "per distinct curve (variations with the same curve share a line and a legend entry). "
-    "Where it reaches 1 every record closes the gap.{at_smt}",
+    "pounding_probability.png": "a panel per wall (any wall first): the fraction of records "
+    "that pounded on it against intensity (markers, pounding_probability.csv) and the fitted "
+    "lognormal onset (line, pounding_fragility.csv), one colour per distinct curve "
+    "(variations with the same curve share it). Where it reaches 1 every record closes that "
+    "gap.{at_smt}",
     "ida_peak_drift_ratio.png": "IDA curves per record, a panel per variation: intensity "
     "against peak drift ratio. A red 'x' in the strip right of the dotted line, labelled "
     "'collapsed', marks the intensity at which the record collapsed (its response there is "
@@ -86,9 +101,12 @@ def _with_margin(smt):
     """The substitutions of the file texts with S_MT or without (``smt`` None)."""
     if smt is None:
         return dict(ref="the runs' median intensity", at_smt="", at_smt_fragility="",
+                    at_smt_pounding="",
                     no_margin=" Without a margin (see above) the columns from S_MT [g] to the "
                     "verdict are empty and the verdict reads 'no margin'.")
     return dict(ref="S_MT", at_smt=" Dashed line at S_MT.", no_margin="",
+                at_smt_pounding="; at S_MT: the fraction pounding read from the traces, the "
+                "fraction collapsed first and the fitted probability",
                 at_smt_fragility=" Dashed line at S_MT: the value there is P(collapse|MCE) "
                 "from record-to-record variability alone (FEMA P695 adds the modelling "
                 "uncertainty through beta_TOT).")
@@ -141,8 +159,7 @@ def readme_text(meta, inputs, basis, ida, levels, written):
                   "upper bound of the final bracket); records that never collapse are "
                   "right-censored at their largest IM (survival term in the likelihood)."
                   if ida else "multiple stripes, binomial likelihood (Baker 2015)."),
-              "A record is one horizontal component (both components of a pair count, as in "
-              "FEMA P695).",
+              RECORD_RULE,
               "Intensities of the response tables: " + (
                   "every stripe / IM level." if levels is None else
                   "each record's run nearest (within +-25 %) to " +

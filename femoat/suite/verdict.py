@@ -7,7 +7,8 @@ significant digits)."""
 import math
 
 COLUMNS = [  # (heading, collapse_summary.csv column)
-    ("variation", "variation"), ("records", "n_records"), ("runs", "n_runs"),
+    ("variation", "variation"), ("records", "n_records"), ("analyses", "n_analyses"),
+    ("runs", "n_runs"),
     ("collapsed", "n_collapsed"), ("failed", None), ("S_CT [g]", "S_CT empirical [g]"),
     ("CMR [-]", "CMR [-]"), ("SSF [-]", "SSF [-]"), ("ACMR [-]", "ACMR [-]"),
     ("ACMR10% [-]", "ACMR10% [-]"), ("ACMR20% [-]", "ACMR20% [-]"), ("verdict", "verdict"),
@@ -39,7 +40,9 @@ def rows(summary):
     for _, r in summary.iterrows():
         line = []
         for heading, col in COLUMNS:
-            if col is None:  # failed: solver failures and errors
+            if col not in (None, *r.index):  # a summary written before the column existed
+                line.append("-")
+            elif col is None:  # failed: solver failures and errors
                 line.append(str(int(r["n_solver_failures"]) + int(r["n_errors"])))
             elif col == "S_CT empirical [g]" and str(r.get("S_CT is a lower bound")) == "True":
                 line.append(">=" + cell(r[col]))
@@ -59,7 +62,37 @@ def table_text(summary):
                      for r in cells)
 
 
-def verdict_text(table, summary, inputs, basis, where):
+WALL_NAMES = {"any": "any wall", "pos": "pos", "neg": "neg", "px": "+x", "mx": "-x",
+              "py": "+y", "my": "-y"}
+
+
+def pounding_text(onsets, smt):
+    """Per variation, the probability of pounding at S_MT per wall (any wall first) and the
+    median onset theta [g] (beta [-]) of pounding_fragility.csv ``onsets``; without S_MT
+    only the onsets."""
+    if onsets is None or not len(onsets):
+        return ""
+    head = (f"Probability of pounding at S_MT = {smt:.4g} g, per wall (fraction of records "
+            "that pounded; collapsed before touching the wall counted apart), and the median "
+            "onset theta (beta):" if smt is not None else
+            "Median onset of pounding theta (beta), per wall:")
+    lines = [head]
+    for label, rows in onsets.groupby("variation", sort=False):
+        parts = []
+        for _, r in rows.iterrows():
+            fit = (f"theta {cell(float(r['theta fitted [g]']))} g "
+                   f"(beta {cell(float(r['beta fitted [-]']))})")
+            at = ""
+            if smt is not None:
+                at = f"P {cell(float(r['P(pounding) at S_MT [-]']))}"
+                col = float(r["P(collapsed first) at S_MT [-]"])
+                at += f" + collapsed {cell(col)}, " if col > 0 else ", "
+            parts.append(f"{WALL_NAMES.get(r['wall'], r['wall'])}: {at}{fit}")
+        lines.append(f"  {label}: " + "; ".join(parts))
+    return "\n".join(lines) + "\n"
+
+
+def verdict_text(table, summary, inputs, basis, where, onsets=None):
     """The whole verdict: counts of ``table`` (the stored runs), the P695 inputs and S_MT of
     the :class:`femoat.suite.p695_inputs.MarginBasis` ``basis`` (or why there is no margin),
     the table of ``summary`` (collapse_summary.csv) and where the report is."""
@@ -77,5 +110,9 @@ def verdict_text(table, summary, inputs, basis, where):
                   "of one, FEMA P695 Section 7.5); 'fail: >= ACMR20% only' passes as a single "
                   "archetype; '>=' marks a lower bound (fewer than half of the records "
                   "collapsed)")
+    legend += ("; records: pairs (plan) or components (1D); analyses: a pair at each angle "
+               "(FEMA P695 3D), S_CT over the analyses")
     lines += ["", table_text(summary), "", legend]
-    return "\n".join(lines) + "\n"
+    text = "\n".join(lines) + "\n"
+    pound = pounding_text(onsets, basis.smt)
+    return text + ("\n" + pound if pound else "")
