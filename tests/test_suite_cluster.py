@@ -100,7 +100,9 @@ def test_local_cluster_by_default(tmp_path):
     summary = run_suite(load_suite(path), tmp_path / "out", workers=1, stream=io.StringIO())
     # 1 record x 1 law x 2 PGAs
     assert summary["runs"] == 2 and summary["failed_tasks"] == 0
-    assert summary["worker_kernels"] == [summary["kernels"]]
+    # the client compiled the kernels into numba's cache before the worker started: the worker
+    # loads every entry point from it and compiles nothing itself
+    assert summary["worker_compiles"] == [0]
     assert len(load_table(tmp_path / "out")) == 2
 
 

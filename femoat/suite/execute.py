@@ -143,6 +143,18 @@ def _kernels(stream):
     return "jit"
 
 
+def _load_kernels():
+    """In a worker: load (or compile) the solver's kernels; return how many signatures this
+    process compiled itself rather than loading them from numba's cache."""
+    from femoat.compilation.exports import EXPORTS
+    from femoat.compilation.warmup import warm_up
+    from femoat.integration.solve import kernels
+
+    warm_up()
+    k = kernels()
+    return sum(sum(getattr(k, name).dispatcher.stats.cache_misses.values()) for name in EXPORTS)
+
+
 def _finish(suite, out, task, rows, progress):
     if rows:
         tb.write_part(rows, suite, out)
@@ -224,6 +236,9 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         client.register_plugin(_ignore_sigint_plugin())  # and a worker restarted later
     futures = {}
     try:
+        # per worker: the kernels loaded (from the cache the client just wrote) and how many
+        # signatures it had to compile itself (0 when the cache served it)
+        summary["worker_compiles"] = sorted(client.run(_load_kernels).values())
         shared = client.scatter(suite, broadcast=True)
         client.run(rn.warm, suite)  # per worker: models built, record set loaded, once
         progress.restart()
