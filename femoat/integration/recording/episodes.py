@@ -64,10 +64,11 @@ def parabolic_peak(t0, f0, t1, f1, t2, f2):
 
 
 @njit(cache=True, inline="always")
-def _emit(c, row, has_after, state, rec):
-    """Append contact ``c``'s episode (``row`` of state.ep) to the impact table."""
-    j = state.stats[S_IMPACTS]
-    out = rec.episodes[j]
+def _emit(c, row, has_after, stats, episodes):
+    """Append contact ``c``'s episode (``row`` of state.ep) to the impact table ``episodes``
+    (``rec.episodes``; ``stats``: ``state.stats``)."""
+    j = stats[S_IMPACTS]
+    out = episodes[j]
     fmax = row[EP_FMAX]
     out[IMPACT_CONTACT] = c
     out[IMPACT_START] = row[EP_START]
@@ -78,7 +79,7 @@ def _emit(c, row, has_after, state, rec):
                                        row[EP_T_AFTER], row[EP_F_AFTER]) if has_after else fmax)
     out[IMPACT_MAX_INDENT] = row[EP_MAX_INDENT]
     out[IMPACT_IMPULSE] = row[EP_IMPULSE]
-    state.stats[S_IMPACTS] = j + 1
+    stats[S_IMPACTS] = j + 1
     row[EP_PHASE] = IDLE
 
 
@@ -94,18 +95,19 @@ def _new_peak(row, t, f, t_prev, f_prev):
     row[EP_T_ZERO] = t if f <= 0.0 else np.nan
 
 
-@njit(cache=True, inline="always")
-def _take(c, t, f, d, dv, closed, t_prev, f_prev, state, rec):
+@njit(cache=True)
+def _take(c, t, f, d, dv, closed, t_prev, f_prev, row, stats, episodes):
     """Contact ``c``'s final values at one recorded sample: time t [s], force f [kip],
     indentation d [in], its rate dv [in/s], closed flag; (t_prev, f_prev) at the sample
-    before."""
-    row = state.ep[c]
+    before; ``row`` its running episode (``state.ep[c]``). Its own compiled function, with
+    arrays rather than the bundles: called only for a contact in an episode, it is compiled
+    once, not again inside every kernel that records."""
     if row[EP_WAIT] == 1.0:  # the sample after the peak: the parabola's third point
         row[EP_T_AFTER] = t
         row[EP_F_AFTER] = f
         row[EP_WAIT] = 0.0
         if row[EP_PHASE] == ENDED:
-            _emit(c, row, True, state, rec)
+            _emit(c, row, True, stats, episodes)
     if row[EP_PHASE] == OPEN:
         row[EP_IMPULSE] += (t - t_prev) * (f + f_prev) / 2.0
         if d > row[EP_MAX_INDENT]:
@@ -119,7 +121,7 @@ def _take(c, t, f, d, dv, closed, t_prev, f_prev, state, rec):
             if row[EP_WAIT] == 1.0:
                 row[EP_PHASE] = ENDED
             else:
-                _emit(c, row, True, state, rec)
+                _emit(c, row, True, stats, episodes)
     elif closed:
         row[EP_PHASE] = OPEN
         row[EP_START] = t
@@ -147,7 +149,7 @@ def _take_sample(k, state, rec):
             p = row(k - 1, rows)
             t_prev, f_prev = rec.t[p], rec.cf[p, c]
         _take(c, rec.t[r], rec.cf[r, c], rec.cd[r, c], rec.cv[r, c], rec.closed[r, c] != 0,
-              t_prev, f_prev, state, rec)
+              t_prev, f_prev, ep[c], state.stats, rec.episodes)
 
 
 @njit(cache=True, inline="always")
@@ -178,4 +180,4 @@ def finish_episodes(state, rec):
     for c in range(state.ep.shape[0]):
         row = state.ep[c]
         if row[EP_PHASE] != IDLE:
-            _emit(c, row, row[EP_WAIT] == 0.0, state, rec)
+            _emit(c, row, row[EP_WAIT] == 0.0, state.stats, rec.episodes)

@@ -197,12 +197,11 @@ def _endpoint(t, model, settings, u, v, a, ag, c_d, pk):
         pk[2 * ns + nc + 2] = max(pk[2 * ns + nc + 2], np.sqrt(u[bx] * u[bx] + u[by] * u[by]))
 
 
-@njit(cache=True, inline="always")
-def _interval(smooth, model, settings, ring, pk):
-    """The crests inside the interval between the two samples of ``ring``."""
-    n = model.M.shape[0]
-    ns = settings.n_struct
-    nc = model.c_gap.size
+@njit(cache=True)
+def _interval(smooth, quintic, n, ns, nc, ref, axis, c_B, base_xy, ring, pk):
+    """The crests inside the interval between the two samples of ``ring``: its own compiled
+    function (called once per recorded sample, with arrays, not the bundles), so that the
+    crest helpers are compiled once, not again inside every kernel that records."""
     t0, t1 = ring[0, 0], ring[1, 0]
     h = t1 - t0
     if not h > 0.0:
@@ -211,7 +210,6 @@ def _interval(smooth, model, settings, ring, pk):
     v0, v1 = ring[0, 1 + n:1 + 2 * n], ring[1, 1 + n:1 + 2 * n]
     a0, a1 = ring[0, 1 + 2 * n:1 + 3 * n], ring[1, 1 + 2 * n:1 + 3 * n]
     ag0, ag1 = ring[0, 1 + 3 * n:], ring[1, 1 + 3 * n:]
-    ref, axis = settings.err_ref, model.dof_axis
     for k in range(ns):
         j = ref[k]
         if j >= 0:
@@ -219,7 +217,6 @@ def _interval(smooth, model, settings, ring, pk):
                                    v1[k] - v1[j], pk[k])
         else:
             pk[k] = _hermite_crest(h, u0[k], v0[k], u1[k], v1[k], pk[k])
-    c_B = model.c_B
     for c in range(nc):
         pk[ns + c] = _hermite_crest(h, _wall(c_B, c, u0, ns), _wall(c_B, c, v0, ns),
                                     _wall(c_B, c, u1, ns), _wall(c_B, c, v1, ns), pk[ns + c])
@@ -228,11 +225,11 @@ def _interval(smooth, model, settings, ring, pk):
         th = a0[0] / (a0[0] - a1[0])
         if th > 0.0 and th < 1.0:
             pk[2 * ns + nc] = max(pk[2 * ns + nc], abs(v0[0] + 0.5 * h * a0[0] * th))
-    if smooth and settings.quintic_peaks:
+    if smooth and quintic:
         for i in range(ns):
             pk[ns + nc + i] = _quintic_accel_crest(h, u0[i], v0[i], a0[i], ag0[axis[i]], u1[i],
                                                    v1[i], a1[i], ag1[axis[i]], pk[ns + nc + i])
-    bx, by = model.base_xy[0], model.base_xy[1]
+    bx, by = base_xy[0], base_xy[1]
     if bx >= 0:
         pk[2 * ns + nc + 2] = _plan_crest(h, u0[bx], v0[bx], u1[bx], v1[bx], u0[by], v0[by],
                                           u1[by], v1[by], pk[2 * ns + nc + 2])
@@ -274,7 +271,9 @@ def _judge_older(k, model, state, settings, rec):
     rows = rec.closed.shape[0]
     open0 = True if k - 2 < 0 else _open(rec.closed[row(k - 2, rows)])
     open1 = True if k - 1 < 0 else _open(rec.closed[row(k - 1, rows)])
-    _interval(open0 and open1, model, settings, ring, state.pk)
+    _interval(open0 and open1, settings.quintic_peaks, model.M.shape[0], settings.n_struct,
+              model.c_gap.size, settings.err_ref, model.dof_axis, model.c_B, model.base_xy, ring,
+              state.pk)
     for j in range(ring.shape[1]):
         ring[0, j] = ring[1, j]
     state.pk_n[0] = 1
