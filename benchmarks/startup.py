@@ -1,0 +1,142 @@
+"""Start-up: what a fresh install and a new process pay before the solver runs.
+
+    python benchmarks/startup.py [--skip-cold]
+
+Prints, each in a fresh Python process:
+
+1. **cold compile**: the solver's entry points compiled by numba from an empty cache (a private
+   NUMBA_CACHE_DIR): CPU per top-level kernel (numba's compile events) and in all;
+2. **a plan run after it**: the extra kernels a first plan run compiles (signatures that are
+   not the 1D probe's), from the same cache;
+3. **warm start**: a new process that finds the cache: wall and CPU from process start to a
+   loaded solver (the probe run), and to a finished paper run; how many signatures it
+   compiled (0: the cache served every one);
+4. **first femoat paper** on empty caches (``--quick`` skipped: the whole study and its
+   figures), end to end, wall clock.
+
+Numbers go to docs/startup.md and the README; nothing here is asserted.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+_COLD = r"""
+import json, time
+from numba.core import event as ev
+top = {}
+class L(ev.Listener):
+    def __init__(s): s.depth = 0
+    def on_start(s, e):
+        s.depth += 1
+        if s.depth == 1:
+            s.t = time.process_time()
+            d = e.data.get('dispatcher')
+            s.name = d.py_func.__qualname__ if d else '?'
+    def on_end(s, e):
+        if s.depth == 1:
+            top[s.name] = top.get(s.name, 0.0) + time.process_time() - s.t
+        s.depth -= 1
+ev.register("numba:compile", L())
+from femoat.compilation.warmup import warm_up
+total = warm_up()
+t = time.process_time()
+from femoat.ground_motions.pair import fema_p695_pair
+from femoat.plan import PlanModel
+from femoat.run import run
+pair = fema_p695_pair("farfield", 1)
+before = dict(top)
+run(PlanModel(), pair, duration=1.0)
+plan = time.process_time() - t
+print(json.dumps({"total": total, "top": before, "plan_extra": plan,
+                  "plan_kernels": {k: v - before.get(k, 0.0) for k, v in top.items()
+                                   if v - before.get(k, 0.0) > 0.05}}))
+"""
+
+_WARM = r"""
+import json, time
+from femoat.compilation.warmup import warm_up
+from femoat.compilation.exports import EXPORTS
+from femoat.integration.solve import kernels
+cpu = warm_up()
+k = kernels()
+misses = sum(sum(getattr(k, n).dispatcher.stats.cache_misses.values()) for n in EXPORTS)
+print(json.dumps({"warm_up_cpu": cpu, "compiled": misses}))
+"""
+
+_PAPER_RUN = ("from femoat.paper import paper_model, paper_motion; from femoat.run import run; "
+              "run(paper_model('steel', 'J'), paper_motion())")
+
+
+def _python(code, env):
+    t0 = time.perf_counter()
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=env, cwd=ROOT, check=False)
+    wall = time.perf_counter() - t0
+    if done.returncode != 0:
+        raise SystemExit(done.stderr[-3000:])
+    return done.stdout, wall
+
+
+def _cpu_of_children(fn):
+    before = os.times()
+    out = fn()
+    after = os.times()
+    return out, (after.children_user - before.children_user
+                 + after.children_system - before.children_system)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--skip-cold", action="store_true",
+                    help="only the warm start (the cold compile takes minutes)")
+    args = ap.parse_args(argv)
+    base = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT),
+                                                         os.environ.get("PYTHONPATH", "")])}
+    print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
+    if not args.skip_cold:
+        with tempfile.TemporaryDirectory(prefix="femoat-startup-") as cache:
+            env = {**base, "NUMBA_CACHE_DIR": cache}
+            out, wall = _python(_COLD, env)
+            cold = json.loads(out.strip().splitlines()[-1])
+            print(f"1. cold compile of the solver's entry points: {cold['total']:.1f} s CPU "
+                  f"({wall:.1f} s wall for the process)")
+            for name, cpu in sorted(cold["top"].items(), key=lambda kv: -kv[1]):
+                if cpu > 0.5:
+                    print(f"     {name:28s}{cpu:8.1f} s")
+            print(f"2. a first plan run after it: {cold['plan_extra']:.1f} s CPU in all "
+                  f"(kernels compiled for it: {cold['plan_kernels'] or 'none'})")
+            (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, env))
+            warm = json.loads(out.strip().splitlines()[-1])
+            print(f"3. warm start (new process, numba's cache): {wall:.2f} s wall, {cpu:.2f} s "
+                  f"CPU from process start to a loaded solver; signatures compiled: "
+                  f"{warm['compiled']}")
+            (_, wall), cpu = _cpu_of_children(lambda: _python(_PAPER_RUN, env))
+            print(f"   ... to a finished paper run: {wall:.2f} s wall, {cpu:.2f} s CPU")
+        with tempfile.TemporaryDirectory(prefix="femoat-paper-") as work:
+            env = {**base, "NUMBA_CACHE_DIR": str(Path(work) / "numba"),
+                   "FEMOAT_CACHE": str(Path(work) / "cache")}
+            code = ("from femoat.cli import main; raise SystemExit(main(['paper', '--out', "
+                    f"{str(Path(work) / 'paper')!r}]))")
+            (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
+            print(f"4. first femoat paper on empty caches: {wall:.1f} s wall, {cpu:.1f} s CPU "
+                  f"(compile, 10 runs, figures)")
+            (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
+            print(f"   a second femoat paper: {wall:.1f} s wall, {cpu:.1f} s CPU")
+    else:
+        (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, base))
+        warm = json.loads(out.strip().splitlines()[-1])
+        print(f"warm start (new process, numba's cache): {wall:.2f} s wall, {cpu:.2f} s CPU; "
+              f"signatures compiled: {warm['compiled']}")
+    print(f"load average after: {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
