@@ -192,7 +192,8 @@ def test_stripes_and_a_hunt_and_fill_ida_of_the_same_records_agree(onsets):
 def test_the_report_writes_the_pounding_fragility_and_a_panel_per_wall(tmp_path):
     meta = dict(varied=[], period=1.5, sdc="Dmax", time_scale=1.0,
                 solver_failure="separate", record_set="farfield", scaling="ida",
-                hunt_fill=True, definition={"p695": {"mu_t": 3.0}})
+                hunt_fill=True, definition={"p695": {"mu_t": 3.0}},
+                scaling_detail={"hunt": {"pounding_onsets": True}})
     t = synthetic().assign(status=lambda d: np.where(d["collapse"], "collapsed", "ok"))
     paths = write_report(t.drop(columns="collapse"), meta, tmp_path)
     names = [p.name for p in paths]
@@ -207,3 +208,6 @@ def test_the_report_writes_the_pounding_fragility_and_a_panel_per_wall(tmp_path)
     assert f.loc["pos", "P(pounding) at S_MT [-]"] == pytest.approx(0.2)
     readme = (tmp_path / "README.txt").read_text()
     assert "pounding_fragility.csv" in readme and "collapsed before" in readme
+    # the scaling line says how the onsets were found: bracketed by the hunt (suite.json)
+    assert "onset of pounding on each wall" in " ".join(readme.split())
+    assert "onset bracket widest [g]" in set(f.columns)
