@@ -133,7 +133,7 @@ def collapse_bracket(runs):
 
 def onset_bracket(runs, wall=ANY):
     """The bracket ``(clear, onset)`` [IM] of the onset of pounding on ``wall`` ("any": on any
-    wall) of the :class:`Run` s ``runs``: ``onset`` the lowest run up to the lowest collapse (the
+    wall) of a trace's ``runs`` (:class:`Run`): ``onset`` the lowest run up to the lowest collapse (the
     collapse run included: it may have pounded) that pounded on the wall, ``clear`` the highest
     run below it (0 when none: every run below it neither pounded there nor collapsed). None
     when no run up to the collapse pounded there (it collapsed first, or never pounded)."""
