@@ -93,6 +93,24 @@ def test_zero_resolution_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, text, "resolution")
 
 
+HUNT = "hunt_fill = true\nstep0 = 0.1\nresolution = 0.01"
+
+
+def test_pounding_onsets_is_on_by_default_and_named_when_wrong(tmp_path, capsys):
+    from femoat.suite.runs import hunt_settings
+
+    # on by default: a 1D trace brackets the onsets on pos and neg (and any wall)
+    suite = load_suite(_write(tmp_path, GOOD.replace("levels = [0.2, 0.4]", HUNT)))
+    assert suite.scaling.hunt["pounding_onsets"] is True
+    assert hunt_settings(suite)["walls"] == ("pos", "neg")
+    off = GOOD.replace("levels = [0.2, 0.4]", HUNT + "\npounding_onsets = false")
+    assert hunt_settings(load_suite(_write(tmp_path, off)))["walls"] == ()
+    _fails(tmp_path, capsys, off.replace("false", '"yes"'), "pounding_onsets", "true")
+    # stripes have no trace to bracket
+    _fails(tmp_path, capsys, GOOD + "pounding_onsets = true\n", "pounding_onsets",
+           "without hunt_fill = true")
+
+
 def test_unknown_variation_key_is_named(tmp_path, capsys):
     _fails(tmp_path, capsys, GOOD + '[variations]\n"walls.lawz" = ["E", "H"]\n', "walls.lawz")
 

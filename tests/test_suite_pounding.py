@@ -9,6 +9,7 @@ from scipy import stats
 
 from femoat.suite import pounding
 from femoat.suite.fragility import fit_ida
+from femoat.suite.huntfill import Outcome, hunt_fill
 from femoat.suite.report import write_report
 
 
@@ -127,39 +128,72 @@ def test_fractions_are_monotone_even_when_a_trace_is_not():
         assert np.all(np.diff((w["n_pounded"] + w["n_collapsed"]).to_numpy()) >= 0)
 
 
-def test_stripes_and_a_hunt_and_fill_ida_of_the_same_records_agree():
-    # the same five records (onsets on pos drawn between grid points), run as stripes at
-    # 0.5, 1, 1.5, 2, 3 g and as an IDA on a 0.1 g grid with no common level but its own: at
-    # each stripe the IDA's traces give the stripes' fractions, because no stripe lies inside
-    # an IDA bracket (onsets 0.63, 0.87, 1.13, 1.77, 2.45 g, collapses 1.33 and 2.55 g)
-    onsets, collapses = [0.63, 0.87, 1.13, 1.77, 2.45], [np.inf, 2.55, np.inf, 1.33, np.inf]
-    levels = [0.5, 1.0, 1.5, 2.0, 3.0]
-    stripes = pd.DataFrame([_run(r, x, onsets[r], np.inf, collapses[r])
-                            for r in range(N) for x in levels])
-    rng = np.random.default_rng(1)
-    ida = pd.DataFrame([row for r in range(N) for row in _trace(
-        r, np.round(np.arange(0.1, 3.21, 0.1) + rng.uniform(-0.02, 0.02, 32), 10),
-        onsets[r], np.inf, collapses[r])])
-    # the IDA grid (to 3.2 g, past the top stripe) is jittered by up to 0.02 g, so its
-    # brackets are at most 0.14 g wide and still contain no stripe level
-    a = pounding.probability_table(stripes, ["pos", "neg"], levels)
-    b = pounding.probability_table(ida, ["pos", "neg"], levels)
-    cols = ["n_pounded", "n_collapsed", "n_not_pounded", "P(pounding) [-]"]
-    pd.testing.assert_frame_equal(a[cols], b[cols])
-    # at 1.5 g: records 0, 1, 2 pounded; record 3 collapsed at 1.33 g before its onset 1.77
-    r = a[(a["wall"] == "pos") & (a["im [g]"] == 1.5)].iloc[0]
-    assert (r["n_pounded"], r["n_collapsed"], r["n_not_pounded"]) == (3, 1, 1)
-    # the IDA's onsets are the upper ends of brackets at most 0.14 g wide: its empirical median
-    # onset (records 0, 1, 2, 4 and the censored 3 above them: the 3rd of 5 is record 2's) is
-    # within the resolution of its true 1.13 g
+def _hunt_fill_trace(rec, onset_pos, collapse, resolution, onsets=True):
+    """The rows of a hunt-and-fill trace (step0 = increment = 0.1 g, 40 runs) of a record that
+    pounds on pos at and above ``onset_pos`` and collapses at and above ``collapse`` [g]."""
+    def run(im):
+        return Outcome(im >= collapse, frozenset({"pos"}) if im >= onset_pos else frozenset())
+
+    runs = hunt_fill(run, 0.1, 0.1, resolution, 40, ("pos", "neg") if onsets else ())
+    return [_run(rec, r.im, onset_pos, np.inf, collapse) for r in runs]
+
+
+@pytest.mark.parametrize("onsets", [True, False])
+def test_stripes_and_a_hunt_and_fill_ida_of_the_same_records_agree(onsets):
+    # the same five records run as stripes and as hunt-and-fill traces bracketing pos's onset
+    # to res = 0.01 g (each collapses within its 40 runs: a trace that never collapses spends
+    # them all on its hunt). Two onsets lie just below a stripe (0.995 < 1.0, 2.495 < 2.5 g),
+    # one on it (1.5 g, a hunt run: 0.1 + 0.2 + 0.3 + 0.4 + 0.5). A trace's onset is the
+    # upper end of a bracket that holds the true onset x and is at most res wide, so
+    # x <= onset < x + res; a stripe at y pounds iff x <= y. So at each level y: pounded in
+    # the IDA => pounded in the stripe at y, and pounded in the stripe at y - res =>
+    # x <= y - res => onset < y => pounded in the IDA:
+    #     P_stripes(y - res) <= P_IDA(y) <= P_stripes(y)
+    res = 0.01
+    onset_pos, collapses = [0.63, 0.995, 1.5, 1.77, 2.495], [3.1, 2.55, 3.2, 1.33, 2.9]
+    levels = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]
+
+    def stripes(at):
+        return pd.DataFrame([_run(r, x, onset_pos[r], np.inf, collapses[r])
+                             for r in range(N) for x in at])
+
+    ida = pd.DataFrame([row for r in range(N)
+                        for row in _hunt_fill_trace(r, onset_pos[r], collapses[r], res, onsets)])
+    p = pounding.probability_table(ida, ["pos", "neg"], levels)
+    hi = pounding.probability_table(stripes(levels), ["pos", "neg"], levels)
+    lo = pounding.probability_table(stripes([y - res for y in levels]), ["pos", "neg"],
+                                    [y - res for y in levels])
     f = pounding.fragility_table(ida, ["pos", "neg"], True, levels).set_index("wall")
-    assert abs(f.loc["pos", "onset median empirical [g]"] - 1.13) <= 0.14
+    if not onsets:
+        # the collapse-only traces know the onsets to the spacing of the runs the collapse
+        # and the fill happened to make: the hunt's 0.1 g steps halved by the fill, 0.1 g here
+        assert f.loc["pos", "onset bracket widest [g]"] > 10 * res
+        return
+    col = "P(pounding) [-]"
+    assert np.all(lo[col].to_numpy() <= p[col].to_numpy())
+    assert np.all(p[col].to_numpy() <= hi[col].to_numpy())
+    # at 1.5 g records 0, 1, 2 pounded (onsets 0.63, 0.995 and 1.5 itself, a hunt run), record
+    # 3 collapsed at 1.33 g before its onset 1.77 g
+    pos = p[p["wall"] == "pos"].set_index("im [g]")
+    assert pos.loc[1.5, "n_pounded"] == 3 and pos.loc[1.5, "n_collapsed"] == 1
+    # each record's onset bracket is at most res wide and holds its true onset (record 3
+    # collapses at 1.33 g before its onset 1.77 g: no onset)
+    tr = pounding.traces(ida, "pos")
+    pounded = np.isfinite(tr["onset"]).to_numpy()
+    assert list(pounded) == [True, True, True, False, True]
+    x = np.array(onset_pos)[pounded]
+    assert np.all((tr["clear"][pounded] < x) & (x <= tr["onset"][pounded]))
+    assert f.loc["pos", "onset bracket widest [g]"] <= res
+    # the empirical median onset (records 0, 1, 2, 4 and the censored 3 above them: the 3rd of
+    # 5 is record 2's, 1.5 g) is within res of it
+    assert 0 <= f.loc["pos", "onset median empirical [g]"] - 1.5 < res
 
 
 def test_the_report_writes_the_pounding_fragility_and_a_panel_per_wall(tmp_path):
     meta = dict(varied=[], period=1.5, sdc="Dmax", time_scale=1.0,
                 solver_failure="separate", record_set="farfield", scaling="ida",
-                hunt_fill=True, definition={"p695": {"mu_t": 3.0}})
+                hunt_fill=True, definition={"p695": {"mu_t": 3.0}},
+                scaling_detail={"hunt": {"pounding_onsets": True}})
     t = synthetic().assign(status=lambda d: np.where(d["collapse"], "collapsed", "ok"))
     paths = write_report(t.drop(columns="collapse"), meta, tmp_path)
     names = [p.name for p in paths]
@@ -174,3 +208,6 @@ def test_the_report_writes_the_pounding_fragility_and_a_panel_per_wall(tmp_path)
     assert f.loc["pos", "P(pounding) at S_MT [-]"] == pytest.approx(0.2)
     readme = (tmp_path / "README.txt").read_text()
     assert "pounding_fragility.csv" in readme and "collapsed before" in readme
+    # the scaling line says how the onsets were found: bracketed by the hunt (suite.json)
+    assert "onset of pounding on each wall" in " ".join(readme.split())
+    assert "onset bracket widest [g]" in set(f.columns)

@@ -397,3 +397,53 @@ def test_the_finished_mark_goes_stale_with_any_change(tmp_path):
     path.write_text(path.read_text() + "[p695]\nmu_t = 2.0\n")  # the suite file edited
     assert not finished.is_finished(path, out)
     assert not finished.is_finished(path, tmp_path / "elsewhere")  # no mark at all
+
+
+def test_hunt_and_fill_onset_runs_are_rows_and_a_cut_trace_resumes(tmp_path):
+    # real runs (3 records, law H, 2 s): every trace brackets its collapse and then its onsets
+    # of pounding (pounding_onsets defaults to true) to 0.02 g, within its 12 runs
+    import pyarrow.parquet as pq
+
+    from femoat.suite import table as tb
+    from femoat.suite.huntfill import Outcome, hunt_fill, onset_bracket
+    from femoat.suite.runs import hunt_settings
+
+    text = SMALL.replace("levels = [0.5, 1.5]", "hunt_fill = true\nstep0 = 0.2\n"
+                         "step_increment = 0.1\nresolution = 0.02\nmax_runs = 12").replace(
+        '"walls.law" = ["E", "H"]', '"walls.law" = ["H"]') + "[collapse]\ndrift_ratio = 0.02\n"
+    suite = load_suite(_suite(tmp_path, text, duration=2.0))
+    out = tmp_path / "out"
+    run_suite(suite, out, serial=True, stream=_quiet())
+    whole = load_table(out)
+
+    def runs_of(trace):
+        return {im: Outcome(st != "ok", frozenset(w for w in suite.walls if trace[f"impacts_{w}"]
+                                                  .to_numpy()[i] > 0))
+                for i, (im, st) in enumerate(zip(trace["im"], trace["status"]))}
+
+    pounded = 0
+    for _, trace in whole.groupby("record"):
+        # the stored rows are the trace hunt_fill makes from them, run for run: the onset runs
+        # are ordinary rows (every column), read back with their walls
+        known = runs_of(trace)
+        again = hunt_fill(known.__getitem__, **hunt_settings(suite))
+        assert sorted(r.im for r in again) == sorted(known) and len(known) <= 12
+        for w in ("any", *suite.walls):
+            b = onset_bracket(again, w)
+            if b is not None:
+                pounded += 1
+                assert b[1] - b[0] <= 0.02 + 1e-12 or len(known) == 12
+    # every trace pounded some wall below its collapse (with pounding_onsets = false the same
+    # traces leave e.g. RSN181's pos onset in (0.425, 0.5], 0.075 g wide)
+    assert pounded >= 3
+    # cut one trace to its first 3 runs (as if its task had stored only those): the rerun
+    # runs that one trace again, from its stored runs on, to the same rows
+    part = next(p for p in tb.part_files(out) if pq.read_table(p).num_rows > 3)
+    rows = pq.read_table(part).to_pylist()
+    part.unlink()
+    tb.write_part(rows[:3], suite, out)
+    assert run_suite(suite, out, serial=True, stream=_quiet())["todo"] == 1
+    resumed = load_table(out)
+    timing = ["cpu_seconds", "solver_seconds"]
+    pd.testing.assert_frame_equal(resumed.drop(columns=timing), whole.drop(columns=timing))
+    assert run_suite(suite, out, serial=True, stream=_quiet())["todo"] == 0

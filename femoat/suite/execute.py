@@ -28,7 +28,7 @@ from pathlib import Path
 
 from femoat.suite import runs as rn
 from femoat.suite import table as tb
-from femoat.suite.huntfill import hunt_fill
+from femoat.suite.huntfill import Outcome, hunt_fill
 from femoat.suite.progress import Progress
 
 
@@ -61,14 +61,15 @@ def prepare(suite, out, overwrite=False):
 def pending(suite, out):
     """The work left: ``(tasks, units)``, the tasks a list of :class:`~femoat.suite.runs.Batch`
     or of :class:`~femoat.suite.runs.Trace`, the units the runs (traces) they hold."""
-    stored = tb.stored_runs(out)
+    stored = tb.stored_runs(out, () if suite.scaling.hunt is None else suite.walls)
     if suite.scaling.hunt is None:
         todo = [s for s in rn.plan(suite) if s.run_id not in stored]
         size = suite.batch_size or default_batch_size(len(todo))
         return [rn.Batch(tuple(todo[i:i + size])) for i in range(0, len(todo), size)], len(todo)
     by_trace = {}
     for rid, run in stored.items():
-        by_trace.setdefault((run.record, run.variation), {})[rid] = not run.survived
+        by_trace.setdefault((run.record, run.variation), {})[rid] = Outcome(not run.survived,
+                                                                            run.hits)
     tasks = []
     for r, v in rn.traces(suite):
         mine = by_trace.get(rn.trace_key(suite, r, v), {})
@@ -85,7 +86,7 @@ def _trace_complete(suite, r, v, stored):
         return stored[rid]
 
     try:
-        hunt_fill(oracle, **suite.scaling.hunt)
+        hunt_fill(oracle, **rn.hunt_settings(suite))
     except _Incomplete:
         return False
     return True

@@ -6,7 +6,14 @@ analyses, :data:`femoat.suite.statistics.RECORD_RULE`), its state read from its 
 
 - its **onset** on a wall is the lowest IM at which it pounded on that wall (the upper bound
   of the bracket [highest clear IM below it, onset], as P695 takes the collapse intensity);
-  runs above its collapse do not enter (the collapse run itself does: it may have pounded);
+  runs above its collapse do not enter (the collapse run itself does: it may have pounded).
+  How narrow the bracket is depends on the runs: a stripe suite knows the onset to its stripe
+  spacing; a hunt-and-fill trace with ``[scaling] pounding_onsets = true`` (the default)
+  bisects each wall's bracket (and any wall's) to ``[scaling] resolution`` with runs of its
+  own, ordinary rows of the table (:mod:`femoat.suite.huntfill`, step 3), unless its
+  ``max_runs`` run out first; without it the onset is known to the spacing of the runs the
+  collapse hunt happened to make. ``onset bracket widest [g]`` of the fragility table says
+  how wide the widest record's bracket stayed;
 - at a level x it **pounded** if onset <= x (once pounding, pounding above: the IDA
   assumption a collapse also makes), else **collapsed** if its collapse IM <= x (it
   collapsed before it touched that wall: its own category, never "did not pound"), else
@@ -32,8 +39,8 @@ import pandas as pd
 from femoat.suite import statistics as st
 from femoat.suite.fragility import (FragilityError, fit_ida, fit_stripes, ida_empirical_median,
                                     stripe_empirical_median)
+from femoat.suite.huntfill import ANY
 
-ANY = "any"
 TOL = 1e-9  # relative: an IM equal to a level to this is at the level
 STATES = ("pounded", "collapsed", "beyond", "not pounded")
 """A record's state at a level (see the module docstring); counted as n_<state>."""
@@ -129,8 +136,10 @@ def fit(tr, ida, levels):
 
 def fragility_table(t, walls, ida, levels, smt=None):
     """Per wall ("any" first): records, how many pounded / collapsed first / never, the
-    empirical median onset [g], the fitted θ [g] and β [-], and at S_MT [g] (when given) the
-    fraction pounding read from the traces and the fitted probability."""
+    empirical median onset [g], the fitted θ [g] and β [-], the widest onset bracket [g] (onset
+    − clear over the records that pounded: how well the onsets are known; NaN: none pounded),
+    and at S_MT [g] (when given) the fraction pounding read from the traces and the fitted
+    probability."""
     rows = []
     for w in [ANY, *walls]:
         tr = traces(t, w)
@@ -140,7 +149,7 @@ def fragility_table(t, walls, ida, levels, smt=None):
                "n_collapsed_first": int((~np.isfinite(tr["onset"])
                                          & np.isfinite(tr["collapse"])).sum()),
                "onset median empirical [g]": med, "theta fitted [g]": theta,
-               "beta fitted [-]": beta}
+               "beta fitted [-]": beta, "onset bracket widest [g]": _widest(tr)}
         if smt is not None:
             at = level_row(tr, smt)
             row.update({"S_MT [g]": smt, "P(pounding) at S_MT [-]": at["P(pounding) [-]"],
@@ -149,6 +158,12 @@ def fragility_table(t, walls, ida, levels, smt=None):
         row["note"] = note
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _widest(tr):
+    """The widest onset bracket (onset − clear) [g] of the records that pounded; NaN: none."""
+    pounded = np.isfinite(tr["onset"])
+    return float((tr["onset"] - tr["clear"])[pounded].max()) if pounded.any() else np.nan
 
 
 def _lognormal(x, theta, beta):

@@ -38,11 +38,16 @@ FILES = {
     "never falls as the intensity grows.",
     "pounding_fragility.csv": "per variation and wall (any first): the onset of pounding as "
     "a fragility, read like the collapse: a record's onset is the lowest intensity at which it "
-    "pounded on the wall (the upper end of its bracket), a record that never pounded is "
-    "right-censored at its highest run with neither pounding nor collapse (also when it "
-    "collapsed before touching the wall: n_collapsed_first); the empirical median onset [g], "
-    "the fitted lognormal theta [g] and beta [-] (IDA: maximum likelihood of the onsets; "
-    "stripes: binomial over pounded / (pounded + not pounded) per stripe){at_smt_pounding}.",
+    "pounded on the wall (the upper end of its bracket, from the highest run below it that "
+    "did not pound there; hunt-and-fill with [scaling] pounding_onsets = true, the default, "
+    "bisects that bracket down to [scaling] resolution within max_runs runs per record), a "
+    "record that never pounded is right-censored at its highest run with neither pounding nor "
+    "collapse (also when it collapsed before touching the wall: n_collapsed_first); the "
+    "empirical median onset [g], the fitted lognormal theta [g] and beta [-] (IDA: maximum "
+    "likelihood of the onsets; stripes: binomial over pounded / (pounded + not pounded) per "
+    "stripe), and onset bracket widest [g], the widest of the records' onset brackets (the "
+    "resolution the onsets are known to: wider than [scaling] resolution where a record's "
+    "runs ran out){at_smt_pounding}.",
     "responses_near_mce.csv": "at the intensity nearest {ref}, per variation, the runs that "
     "pounded and those that did not, apart: their number and the median and dispersion of each "
     "response (runs that collapsed left out). Without pounding the impact force is zero and "
@@ -127,6 +132,12 @@ def not_reported(basis, ida):
     return out
 
 
+def _onsets(meta):
+    """Whether the suite's hunt-and-fill bracketed the onsets of pounding (suite.json)."""
+    hunt = (meta.get("scaling_detail") or {}).get("hunt") or {}
+    return bool(meta.get("hunt_fill") and hunt.get("pounding_onsets"))
+
+
 def readme_text(meta, inputs, basis, ida, levels, written):
     """The README text; ``inputs`` the P695 inputs, ``basis`` the
     :class:`femoat.suite.p695_inputs.MarginBasis`; ``written`` the file names."""
@@ -135,7 +146,7 @@ def readme_text(meta, inputs, basis, ida, levels, written):
              f"Record set: {meta.get('record_set') or 'none (AT2 files)'}; intensity measure: "
              f"{'PGA' if meta.get('im_kind') == 'pga' else 'Sa(T)'}",
              f"Scaling ({meta.get('scaling')}): "
-             f"{describe(meta.get('scaling'), meta.get('hunt_fill'))}."]
+             f"{describe(meta.get('scaling'), meta.get('hunt_fill'), _onsets(meta))}."]
     if period is not None:
         used = "Sa(T), S_MT and SSF" if basis.smt is not None else "the run table's sa_t only"
         lines.append(f"Period used for {used}: T = {float(period):.4g} s, the prototype period"

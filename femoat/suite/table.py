@@ -76,16 +76,24 @@ def load_table(out, columns=None):
 
 
 class StoredRun(NamedTuple):
-    """A run already in the table: its record and variation labels, and whether it survived
-    (status 'ok'; a collapse, a solver failure or an error did not)."""
+    """A run already in the table: its record and variation labels, whether it survived
+    (status 'ok'; a collapse, a solver failure or an error did not) and the walls it pounded
+    on (the ``walls`` asked for whose ``impacts_<wall>`` > 0)."""
 
     record: str
     variation: str
     survived: bool
+    hits: frozenset = frozenset()
 
 
-def stored_runs(out):
-    """{run_id: :class:`StoredRun`} of the runs already stored in ``out``."""
-    df = load_table(out, columns=["run_id", "record", "variation", "status"])
-    return {rid: StoredRun(rec, v, st == "ok")
-            for rid, rec, v, st in zip(df["run_id"], df["record"], df["variation"], df["status"])}
+def stored_runs(out, walls=()):
+    """{run_id: :class:`StoredRun`} of the runs already stored in ``out``; ``walls``: the wall
+    keys whose impacts are read (a hunt-and-fill trace that brackets its onsets needs them)."""
+    impacts = [f"impacts_{w}" for w in walls]
+    df = load_table(out, columns=["run_id", "record", "variation", "status", *impacts])
+    if df.empty:
+        return {}
+    hit = {w: (df[c].fillna(0).to_numpy(int) > 0) for w, c in zip(walls, impacts)}
+    return {rid: StoredRun(rec, v, st == "ok", frozenset(w for w in walls if hit[w][i]))
+            for i, (rid, rec, v, st) in enumerate(zip(df["run_id"], df["record"],
+                                                      df["variation"], df["status"]))}
