@@ -27,3 +27,17 @@ def test_dp5_runs_match_the_stored_fingerprints():
     assert current.keys() == stored.keys()
     for name in stored:
         assert current[name] == stored[name], name
+
+
+def test_plan_runs_match_the_stored_fingerprints():
+    # Three plan runs (square moat, every wall hit; with and without history; two laws),
+    # stored from the commit before issue 24's compile work: the compiled loop's results for
+    # a plan model may not change by one bit either (tests/plan_fingerprints.py).
+    from plan_fingerprints import compute as compute_plan
+    from plan_fingerprints import load as load_plan
+
+    stored = load_plan()
+    current = compute_plan()
+    assert current.keys() == stored.keys()
+    for name in stored:
+        assert current[name] == stored[name], name
