@@ -8,9 +8,15 @@ module's cache entries when the fingerprint of every kernel source
 :mod:`femoat.compilation.jit` calls it before numba first compiles or loads a module's kernels.
 """
 
+import contextlib
 import hashlib
 import os
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # not POSIX: no lock, processes may compile side by side
+    fcntl = None
 
 
 def cache_dirs(module_file):
@@ -48,3 +54,35 @@ def _drop_if_stale(cache_dir, stem, digest):
         stamp.write_text(digest)
     except OSError:
         pass  # read-only install: numba falls back to compiling in memory
+
+
+_locked_once = []
+
+
+@contextlib.contextmanager
+def first_compile_lock(module_file):
+    """Hold an exclusive lock beside ``module_file``'s numba cache during this process's first
+    use of the solver (reentrant calls and later uses pass straight through).
+
+    Processes starting together on a fresh install (a suite's workers, a test session's
+    workers, several commands) would otherwise each compile the same kernels at once, sharing
+    the cores; with the lock one compiles and writes the cache while the others wait, then
+    load the kernels from it in about a second. A folder that cannot hold the lock (read-only,
+    not POSIX) gives no lock: numba's own cache writes stay safe, they only cost CPU."""
+    if _locked_once or fcntl is None:
+        yield
+        return
+    _locked_once.append(True)
+    folder = cache_dirs(module_file)[-1]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        handle = open(folder / "femoat-compile.lock", "a")
+    except OSError:
+        yield
+        return
+    with handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)

@@ -3,6 +3,7 @@
 import dataclasses
 import functools
 import math
+import os
 import time as _time
 from dataclasses import dataclass, replace
 from typing import NamedTuple
@@ -142,6 +143,19 @@ def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, p
     raising when the stepping cannot continue: the history, peaks, impacts and energies up
     to the time reached, and the status saying why it stopped. Bad input still raises
     ``ValueError``."""
+    from femoat.compilation.numba_cache import first_compile_lock
+
+    with first_compile_lock(_DRIVER_FILE):  # this process's first run: compile or load alone
+        return _integrate(packed, ag, dt_rec, duration, integrator, u0, v0, progress, chunks,
+                          lazy, channels, limits, stop_at_limit, history)
+
+
+_DRIVER_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "driver.py")
+"""The compiled loop's module: numba's cache beside it holds the compile lock."""
+
+
+def _integrate(packed, ag, dt_rec, duration, integrator, u0, v0, progress, chunks, lazy, channels,
+               limits, stop_at_limit, history):
     kern = kernels()
     integ = integrator or Integrator()
     packed, ag, u, v = _inputs(packed, ag, dt_rec, duration, u0, v0)
