@@ -116,3 +116,45 @@ def shear_chain(weights, ks):
             K[i, i - 1] -= k
             K[i - 1, i] -= k
     return m, K
+
+
+# ---- a parallel session (pytest-xdist, -n N): the solver compiled once, while tests run -------
+# The first use of the solver in a process holds a lock beside numba's cache (compile once,
+# load everywhere else: femoat.compilation.numba_cache.first_compile_lock). The controller of a
+# parallel session starts that compile at once in a background process, while the workers
+# start, collect and run the test files that never use the building solver (run first); the
+# workers' first solver test then waits for the lock and loads the kernels. tests/README.md.
+SOLVER_FREE = ("test_atomic.py", "test_contact_laws.py", "test_ground_motions_fema.py",
+               "test_ground_motions_peer.py", "test_ground_motions_record.py",
+               "test_ground_motions_spectrum.py", "test_materials.py",
+               "test_materials_opensees.py", "test_plotting_drift.py", "test_record_pair.py",
+               "test_repository.py", "test_wall_fe_beam.py", "test_wall_fe_calibrate.py",
+               "test_wall_fe_io.py", "test_wall_fe_models.py", "test_readers_fuzz.py",
+               "test_imports.py", "test_optional_dependencies.py")
+
+
+def _parallel_controller(config):
+    workers = config.getoption("numprocesses", None)
+    return (workers not in (None, 0, "0") and os.environ.get("PYTEST_XDIST_WORKER") is None
+            and not config.getoption("collectonly", False))
+
+
+def pytest_configure(config):
+    if _parallel_controller(config):
+        config._femoat_compile = subprocess.Popen(
+            [sys.executable, "-c", "from femoat.compilation.warmup import warm_up; warm_up()"],
+            env={**os.environ, "PYTHONPATH": os.pathsep.join([str(_ROOT),
+                                                              os.environ.get("PYTHONPATH", "")])},
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def pytest_unconfigure(config):
+    proc = getattr(config, "_femoat_compile", None)
+    if proc is not None and proc.poll() is None:
+        proc.wait()
+
+
+def pytest_collection_modifyitems(config, items):
+    # a stable sort: the solver-free files first, every other order kept (the same in every
+    # worker, as pytest-xdist requires)
+    items.sort(key=lambda item: Path(str(item.fspath)).name not in SOLVER_FREE)
