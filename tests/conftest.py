@@ -11,6 +11,16 @@ DATA = Path(__file__).resolve().parent / "data"
 SUITE_RECORDS = ("Rinaldi228.AT2", "RSN77_SFERN_PUL164.AT2", "RSN181_IMPVALL.H_H-E06230.AT2")
 
 
+def write_at2(path, accel, dt):
+    """A PEER AT2 file of ``accel`` [g] at ``dt`` [s] (the header read_at2 parses)."""
+    lines = ["PEER NGA STRONG MOTION DATABASE RECORD", "test record, 1/1/2000, station, 0",
+             "ACCELERATION TIME SERIES IN UNITS OF G",
+             f"NPTS= {len(accel):6d}, DT= {dt:.4f} SEC"]
+    lines += ["".join(f"{a:15.7E}" for a in accel[i:i + 5]) for i in range(0, len(accel), 5)]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
 def three_records(folder):
     """A folder holding three of the shipped PEER records (the suites' tests use these)."""
     import shutil

@@ -12,12 +12,12 @@ the step counts, the energy terms and every named peak (``float.hex``, exact).
     PYTHONPATH=. python tests/plan_fingerprints.py --write    # store them
 """
 
-import hashlib
 import json
 import sys
 from pathlib import Path
 
 import numpy as np
+from fingerprints import _sha
 
 PATH = Path(__file__).resolve().parent / "data" / "fingerprints_plan.json"
 ARRAYS = ("time", "displacement", "velocity", "acceleration", "ground_acceleration",
@@ -27,15 +27,6 @@ STATS = ("steps", "rejected_error", "rejected_newton", "newton_iterations", "eve
 CASES = ("concrete/H/history", "concrete/H/peaks", "steel/E/history")
 TIMINGS = ("cpu_seconds", "compile_seconds")
 """Peaks that are timings, not results (left out)."""
-
-
-def _sha(*arrays):
-    h = hashlib.sha256()
-    for a in arrays:
-        a = np.ascontiguousarray(a)
-        h.update(f"{a.dtype.str}{a.shape}".encode())
-        h.update(a.tobytes())
-    return h.hexdigest()
 
 
 def _exact(value):

@@ -8,23 +8,14 @@ import numpy as np
 import pytest
 
 from femoat.cli import main
-
-
-def _write_at2(path, accel, dt):
-    """A PEER AT2 file of ``accel`` [g] at ``dt`` [s]."""
-    lines = ["PEER NGA STRONG MOTION DATABASE RECORD", "test record, 1/1/2000, station, 0",
-             "ACCELERATION TIME SERIES IN UNITS OF G",
-             f"NPTS= {len(accel):6d}, DT= {dt:.4f} SEC"]
-    lines += ["".join(f"{a:15.7E}" for a in accel[i:i + 5]) for i in range(0, len(accel), 5)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
+from conftest import write_at2
 
 
 def _scenario(tmp_path, moat=True):
     # 2 s of a 1 Hz sine of 0.5 g along x, 0.3 g along y, at 0.01 s
     t = np.arange(201) * 0.01
-    _write_at2(tmp_path / "x.AT2", 0.5 * np.sin(2 * np.pi * t), 0.01)
-    _write_at2(tmp_path / "y.AT2", 0.3 * np.sin(2 * np.pi * t), 0.01)
+    write_at2(tmp_path / "x.AT2", 0.5 * np.sin(2 * np.pi * t), 0.01)
+    write_at2(tmp_path / "y.AT2", 0.3 * np.sin(2 * np.pi * t), 0.01)
     text = "[building]\nplan = true\n"
     if moat:
         text += ('[moat]\nlaw = "H"\ngap = 3.0\n[moat."+x"]\npreset = "steel"\nlaw = "E"\n'

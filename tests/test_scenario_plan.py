@@ -18,6 +18,7 @@ from femoat.plan import PlanBuilding, PlanModel, PlanWall, rectangular_moat
 from femoat.scenario import defaults, load_scenario, scenario_from_dict
 from femoat.structure.materials import Bilinear, Elastic
 from femoat.walls import wall_preset
+from conftest import write_at2
 
 ROOT = Path(__file__).resolve().parents[1]
 PEER = ROOT / "tests" / "data" / "peer"
@@ -31,16 +32,6 @@ AT2_PAIR = {"source": "at2", "path_x": str(RINALDI), "path_y": str(RINALDI)}  # 
 def _plan(**tables):
     """A plan scenario's tables: plan building, the Rinaldi pair unless ``motion`` is given."""
     return scenario_from_dict({"building": PLAN, "motion": AT2_PAIR, **tables})
-
-
-def _write_at2(path, accel, dt):
-    """A PEER AT2 file of ``accel`` [g] at ``dt`` [s] (the header read_at2 parses)."""
-    lines = ["PEER NGA STRONG MOTION DATABASE RECORD", "test record, 1/1/2000, station, 0",
-             "ACCELERATION TIME SERIES IN UNITS OF G",
-             f"NPTS= {len(accel):6d}, DT= {dt:.4f} SEC"]
-    lines += ["".join(f"{a:15.7E}" for a in accel[i:i + 5]) for i in range(0, len(accel), 5)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
 
 
 # ---- the model --------------------------------------------------------------------------------
@@ -123,7 +114,7 @@ def test_the_defaults_are_read_back_and_follow_the_objects(monkeypatch):
 
 def test_a_pair_at_90_degrees_from_a_file_equals_the_python_pair(tmp_path):
     # y: the first 1991 samples of Pacoima Dam (dt 0.01 s, as Rinaldi's x)
-    y_file = _write_at2(tmp_path / "y.AT2", read_at2(PACOIMA).accel_g[:1991], 0.01)
+    y_file = write_at2(tmp_path / "y.AT2", read_at2(PACOIMA).accel_g[:1991], 0.01)
     path = tmp_path / "plan.toml"
     path.write_text('[building]\nplan = true\n[motion]\nsource = "at2"\n'
                     f'path_x = "{RINALDI.as_posix()}"\npath_y = "y.AT2"\nangle = 90\n'

@@ -13,6 +13,7 @@ import pytest
 from femoat.cli import main
 from femoat.ground_motions import fema_p695_pair, fema_p695_record, response_spectrum
 from femoat.scenario import scenario_from_dict
+from conftest import write_at2
 
 
 def _sa(motion, period):
@@ -58,21 +59,12 @@ def test_a_pair_scaled_to_sa_has_that_geometric_mean_whatever_its_angle():
                                        rel=1e-12)
 
 
-def _write_at2(path, accel, dt):
-    lines = ["PEER NGA STRONG MOTION DATABASE RECORD", "test record, 1/1/2000, station, 0",
-             "ACCELERATION TIME SERIES IN UNITS OF G",
-             f"NPTS= {len(accel):6d}, DT= {dt:.4f} SEC"]
-    lines += ["".join(f"{a:15.7E}" for a in accel[i:i + 5]) for i in range(0, len(accel), 5)]
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
 @pytest.mark.parametrize("plan", [False, True])
 def test_run_echoes_the_factor_on_the_terminal_and_in_the_readme(tmp_path, capsys, plan):
     # 2 s of a 1 Hz sine at 0.01 s, 0.2 g along x (and 0.1 g along y in plan)
     t = np.arange(201) * 0.01
-    _write_at2(tmp_path / "x.AT2", 0.2 * np.sin(2 * np.pi * t), 0.01)
-    _write_at2(tmp_path / "y.AT2", 0.1 * np.sin(2 * np.pi * t), 0.01)
+    write_at2(tmp_path / "x.AT2", 0.2 * np.sin(2 * np.pi * t), 0.01)
+    write_at2(tmp_path / "y.AT2", 0.1 * np.sin(2 * np.pi * t), 0.01)
     motion = 'sa = 0.3\nperiod = 1.0\nextra_time = 0.2\nsource = "at2"\n'
     motion += 'path_x = "x.AT2"\npath_y = "y.AT2"\n' if plan else 'path = "x.AT2"\n'
     text = ("[building]\nplan = true\n[moat]\ngap = 3.0\n" if plan else "") + \
