@@ -96,16 +96,18 @@ def test_zero_resolution_is_named(tmp_path, capsys):
 HUNT = "hunt_fill = true\nstep0 = 0.1\nresolution = 0.01"
 
 
-def test_pounding_onsets_is_on_by_default_and_named_when_wrong(tmp_path, capsys):
+def test_pounding_onsets_is_off_by_default_and_named_when_wrong(tmp_path, capsys):
     from femoat.suite.runs import hunt_settings
 
-    # on by default: a 1D trace brackets the onsets on pos and neg (and any wall)
+    # off by default (its runs would come out of the collapse's fill): the collapse only
     suite = load_suite(_write(tmp_path, GOOD.replace("levels = [0.2, 0.4]", HUNT)))
-    assert suite.scaling.hunt["pounding_onsets"] is True
-    assert hunt_settings(suite)["walls"] == ("pos", "neg")
-    off = GOOD.replace("levels = [0.2, 0.4]", HUNT + "\npounding_onsets = false")
-    assert hunt_settings(load_suite(_write(tmp_path, off)))["walls"] == ()
-    _fails(tmp_path, capsys, off.replace("false", '"yes"'), "pounding_onsets", "true")
+    assert suite.scaling.hunt["pounding_onsets"] is False
+    assert hunt_settings(suite)["walls"] == ()
+    # on: a 1D trace brackets the onsets on pos and neg (and any wall)
+    on = GOOD.replace("levels = [0.2, 0.4]", HUNT + "\npounding_onsets = true")
+    assert hunt_settings(load_suite(_write(tmp_path, on)))["walls"] == ("pos", "neg")
+    _fails(tmp_path, capsys, on.replace("pounding_onsets = true", 'pounding_onsets = "yes"'),
+           "pounding_onsets", "true")
     # stripes have no trace to bracket
     _fails(tmp_path, capsys, GOOD + "pounding_onsets = true\n", "pounding_onsets",
            "without hunt_fill = true")

@@ -401,7 +401,7 @@ def test_the_finished_mark_goes_stale_with_any_change(tmp_path):
 
 def test_hunt_and_fill_onset_runs_are_rows_and_a_cut_trace_resumes(tmp_path):
     # real runs (3 records, law H, 2 s): every trace brackets its collapse and then its onsets
-    # of pounding (pounding_onsets defaults to true) to 0.02 g, within its 12 runs
+    # of pounding (pounding_onsets = true) to 0.02 g, within its 12 runs
     import pyarrow.parquet as pq
 
     from femoat.suite import table as tb
@@ -409,7 +409,8 @@ def test_hunt_and_fill_onset_runs_are_rows_and_a_cut_trace_resumes(tmp_path):
     from femoat.suite.runs import hunt_settings
 
     text = SMALL.replace("levels = [0.5, 1.5]", "hunt_fill = true\nstep0 = 0.2\n"
-                         "step_increment = 0.1\nresolution = 0.02\nmax_runs = 12").replace(
+                         "step_increment = 0.1\nresolution = 0.02\nmax_runs = 12\n"
+                         "pounding_onsets = true").replace(
         '"walls.law" = ["E", "H"]', '"walls.law" = ["H"]') + "[collapse]\ndrift_ratio = 0.02\n"
     suite = load_suite(_suite(tmp_path, text, duration=2.0))
     out = tmp_path / "out"

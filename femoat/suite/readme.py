@@ -39,7 +39,7 @@ FILES = {
     "pounding_fragility.csv": "per variation and wall (any first): the onset of pounding as "
     "a fragility, read like the collapse: a record's onset is the lowest intensity at which it "
     "pounded on the wall (the upper end of its bracket, from the highest run below it that "
-    "did not pound there; hunt-and-fill with [scaling] pounding_onsets = true, the default, "
+    "did not pound there; hunt-and-fill with [scaling] pounding_onsets = true (off by default) "
     "bisects that bracket down to [scaling] resolution within max_runs runs per record), a "
     "record that never pounded is right-censored at its highest run with neither pounding nor "
     "collapse (also when it collapsed before touching the wall: n_collapsed_first); the "

@@ -57,7 +57,7 @@ def traces(suite):
 def hunt_settings(suite):
     """The keyword arguments of :func:`~femoat.suite.huntfill.hunt_fill` for a trace of
     ``suite``: ``[scaling]``'s, with the suite's walls when it brackets the onsets of pounding
-    (``pounding_onsets``, default true; 1D: pos, neg; plan: px, mx, py, my)."""
+    (``pounding_onsets``, default false; 1D: pos, neg; plan: px, mx, py, my)."""
     hunt = dict(suite.scaling.hunt)
     onsets = hunt.pop("pounding_onsets", False)
     return {**hunt, "walls": tuple(suite.walls) if onsets else ()}
