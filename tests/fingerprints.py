@@ -4,7 +4,7 @@ For each wall (concrete, steel), contact law (E, V, J, H, M) and impact damping 
 consistent) under :func:`femoat.paper.paper_motion`, a sha256 of every recorded history's bytes
 (time, displacement, contact force, and all the other channels together), the step, rejection and
 Newton counts and the energy terms (as ``float.hex``, exact). Two sets: the full motion (as in
-the paper) and the quick one (its first 4 s, for the ahead-of-time check in a subprocess).
+the paper) and the quick one (its first 4 s).
 
     PYTHONPATH=. python tests/fingerprints.py            # print the current fingerprints' diff
     PYTHONPATH=. python tests/fingerprints.py --write    # store them (both files)

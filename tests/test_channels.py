@@ -121,8 +121,9 @@ def test_every_method_has_the_interface_and_is_dispatched(module):
 
 
 def test_settings_are_named_and_typed_alike_for_every_run():
-    # the ahead-of-time module exports one signature per kernel: every run's Settings must have
-    # the same numba type, whatever the Integrator and the duration's Python type
+    # one compiled signature per kernel, loaded from numba's cache by every process: every
+    # run's Settings must have the same numba type, whatever the Integrator and the duration's
+    # Python type
     from femoat.integration.solve import _settings
 
     packed = paper_model("concrete", "H").pack()

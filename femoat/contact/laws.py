@@ -25,7 +25,7 @@ family's number), and the dispatcher that selects a family's kernel by that numb
 
 * a law on an existing family (a linear spring of another stiffness, a Hertz law with another
   damping closed form) is one module and its line in :data:`MODULES`, or one :func:`register`
-  call from anywhere, with no compilation: the JIT and the ahead-of-time kernels already run it;
+  call from anywhere, with no compilation: the compiled (and cached) kernels already run it;
 * a law with new kernels is one module (kernels, dataclass, ``LAW``) and its line in
   :data:`MODULES`, then ``python -m femoat.contact.generate`` rewrites the dispatcher
   (``tests/test_law_registry.py`` fails until it has). :func:`register` refuses it at run

@@ -1,5 +1,5 @@
-"""The compiled loop's data, grouped by role: plain tuples that numba compiles and the
-ahead-of-time module exports (:func:`femoat.integration.driver.run_chunk` takes one of each).
+"""The compiled loop's data, grouped by role: plain tuples that numba compiles (one signature
+for every run: :func:`femoat.integration.driver.run_chunk` takes one of each).
 
 * :class:`Model`: what is integrated (matrices, elements, contacts, the ground record, and
   ``Minv``, the inverse of the mass block the explicit step integrates); read only.
