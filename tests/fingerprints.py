@@ -77,6 +77,19 @@ def compute(quick, only=None, method="newmark"):
     return out
 
 
+def write_or_compare(path, current, argv):
+    """``--write`` in argv: store ``current`` ({key: fingerprint}) at ``path``; else print the
+    keys whose stored fingerprint differs. Exit status 0 when stored or all equal."""
+    if "--write" in argv:
+        path.write_text(json.dumps(current, indent=1, sort_keys=True) + "\n")
+        print(f"wrote {path}")
+        return 0
+    stored = json.loads(path.read_text())
+    bad = [k for k in stored if current.get(k) != stored[k]]
+    print("bit-identical" if not bad else f"these differ: {bad}")
+    return 0 if not bad else 1
+
+
 def load(method="newmark"):
     return json.loads((PATH if method == "newmark" else PATH_DP5).read_text())
 

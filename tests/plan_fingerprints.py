@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from fingerprints import _sha
+from fingerprints import _sha, write_or_compare
 
 PATH = Path(__file__).resolve().parent / "data" / "fingerprints_plan.json"
 ARRAYS = ("time", "displacement", "velocity", "acceleration", "ground_acceleration",
@@ -82,18 +82,7 @@ def load():
 
 
 def main(argv):
-    current = compute()
-    if "--write" in argv:
-        PATH.write_text(json.dumps(current, indent=1, sort_keys=True) + "\n")
-        print(f"wrote {PATH}")
-        return 0
-    stored = load()
-    bad = [k for k in stored if current.get(k) != stored[k]]
-    for k in bad:
-        print(f"{k}: differs", {f: (stored[k][f], current[k][f]) for f in stored[k]
-                                if stored[k][f] != current[k].get(f)})
-    print("bit-identical" if not bad else f"{len(bad)} runs differ")
-    return 0 if not bad else 1
+    return write_or_compare(PATH, compute(), argv)
 
 
 if __name__ == "__main__":

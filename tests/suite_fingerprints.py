@@ -20,6 +20,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from fingerprints import write_or_compare
 
 DATA = Path(__file__).resolve().parent / "data"
 PATH = DATA / "fingerprints_suite.json"
@@ -83,15 +84,7 @@ def load():
 
 
 def main(argv):
-    current = compute()
-    if "--write" in argv:
-        PATH.write_text(json.dumps(current, indent=1, sort_keys=True) + "\n")
-        print(f"wrote {PATH}")
-        return 0
-    stored = load()
-    bad = [k for k in stored if current.get(k) != stored[k]]
-    print("bit-identical" if not bad else f"columns differ: {bad}")
-    return 0 if not bad else 1
+    return write_or_compare(PATH, compute(), argv)
 
 
 if __name__ == "__main__":
