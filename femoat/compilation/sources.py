@@ -24,7 +24,7 @@ from femoat.atomic import write_text
 PACKAGE = Path(__file__).resolve().parents[1]
 """femoat's package folder (the default root of every scope)."""
 
-KERNELS = ("checks.py", "compilation/jit.py", "contact", "integration", "plan/bearing.py",
+KERNELS = ("bearings", "checks.py", "compilation/jit.py", "contact", "integration",
            "structure/materials", "units.py")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 

@@ -37,7 +37,7 @@ Model = namedtuple("Model", [
     "dof_axis",         # (n,) the ground component each DOF moves along (absolute accelerations)
     "base_xy",          # (2,) the base mat's x and y DOFs in plan (−1, −1 in 1D)
     "el_i", "el_j", "el_code", "el_P",  # two-node uniaxial elements
-    "b_dofs", "b_P",    # plan bearings (femoat.plan.bearing): (nb, 2) DOFs x, y; params
+    "b_kind", "b_dofs", "b_P",  # plan bearings: kind (femoat.bearings), (nb, 2) DOFs x, y; params
     "c_B", "c_gap", "c_code", "c_P",    # contacts: δ = c_B·u − gap, law, params
     "c_T", "c_mu",      # the walls' tangent rows and friction coefficients (plan)
     "Minv",             # inverse of the mass block the explicit step integrates

@@ -1,12 +1,12 @@
 """Accepting a step: energies, element and contact states, the episodes a step opens or
 closes, the kinematics."""
 
+from femoat.bearings.dispatch import bearing_plan_commit
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_commit
 from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.events import close_episode, open_episode
 from femoat.integration.forces import contact_rate, ground_load
-from femoat.plan.bearing import plan_friction_pendulum_path_commit
 from femoat.structure.materials.kernels import material_commit
 
 
@@ -55,9 +55,8 @@ def accept(hh, ag1, landing, explicit_step, model, state, settings, work):
         ix, iy = b_dofs[e, 0], b_dofs[e, 1]
         state.b_W[e] += 0.5 * ((b_f[e, 0] + w_bf[e, 0]) * (work.u[ix] - u[ix])
                                + (b_f[e, 1] + w_bf[e, 1]) * (work.u[iy] - u[iy]))
-        plan_friction_pendulum_path_commit(model.b_P[e], state.b_S[e], u[ix], u[iy], v[ix],
-                                           v[iy], work.u[ix], work.u[iy], work.v[ix], work.v[iy],
-                                           hh)
+        bearing_plan_commit(model.b_kind[e], model.b_P[e], state.b_S[e], u[ix], u[iy], v[ix],
+                            v[iy], work.u[ix], work.u[iy], work.v[ix], work.v[iy], hh)
         b_f[e, 0] = w_bf[e, 0]
         b_f[e, 1] = w_bf[e, 1]
     toggled = False

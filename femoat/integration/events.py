@@ -10,7 +10,13 @@ state is declared there (:func:`declare_event`).
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import contact_closure
 from femoat.integration.codes import S_EVENTS
-from femoat.integration.forces import _internal_force, _solve_dense, contact_rate, ground_load
+from femoat.integration.forces import (
+    Outputs,
+    _internal_force,
+    _solve_dense,
+    contact_rate,
+    ground_load,
+)
 from femoat.integration.interpolants import crossing, quintic
 from femoat.integration.kinks import KINK_RESOLUTION
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
@@ -33,9 +39,8 @@ def restart(model, state, work):
     w_A, w_b = work.A, work.b
     ag_now = state.ag_now
     n = u.size
-    _internal_force(u, v, model, state.el_S, state.c_H, state.c_closed, work.ef, work.ed,
-                    state.c_f, state.c_d, Fn, work.KT, work.CT, False, n, state.b_S, state.b_f,
-                    state.c_ft, work.k22, u, v, 0.0)
+    out = Outputs(work.ef, work.ed, state.c_f, state.c_d, Fn, state.b_f, state.c_ft)
+    _internal_force(u, v, model, state, work, out, False, n, u, v, 0.0)
     for i in range(n):
         w_b[i] = ground_load(r, i, ag_now) - Fn[i]
         for j in range(n):

@@ -5,11 +5,13 @@ forces with their tangents, and the small dense solver. Shared by every integrat
 Units: kip, in, s.
 """
 
+from collections import namedtuple
+
 import numpy as np
 
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_force
-from femoat.plan.bearing import plan_friction_pendulum_path_trial
+from femoat.bearings.dispatch import bearing_plan_trial
 from femoat.structure.materials.kernels import material_trial
 
 
@@ -84,23 +86,36 @@ def _solve_dense(A, b, n):
 
 
 
-@njit(cache=True, inline="always")
-def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, KT, CT,
-                    want_tangent, nd, b_S, b_f, c_ft, k22, u0, v0, tau):
-    """F = C·v + K·u + element, plan-bearing and contact forces at (u, v); tangents KT, CT if
-    asked.
+Outputs = namedtuple("Outputs", ["el_f", "el_d", "c_f", "c_d", "F", "b_f", "c_ft"])
+"""Where :func:`_internal_force` writes: element forces and deformations, contact forces and
+indentations, F, the bearings' forces (x, y), the walls' friction forces (a trial writes into the
+work bundle's, :func:`trial_outputs`; an evaluation at the state itself into the state's)."""
 
-    Element states ``el_S``, bearing states ``b_S`` and contact histories ``c_H`` are the
-    committed ones (read only); the element forces and deformations, the bearings' forces
-    (x, y), the contact forces and indentations and the walls' friction forces are written to
-    ``el_f``, ``el_d``, ``b_f``, ``c_f``, ``c_d``, ``c_ft``; ``k22`` is (2, 2, 2) scratch. A plan
-    bearing follows the path of the step from the committed state (``u0``, ``v0`` at its start,
-    duration ``tau`` [s]; 0 at the committed state itself). Rows and columns from ``nd`` on are treated as diagonal
+
+@njit(cache=True, inline="always")
+def trial_outputs(work):
+    """:class:`Outputs` into the work bundle (a trial state)."""
+    return Outputs(work.ef, work.ed, work.cf, work.cd, work.F, work.bf, work.cft)
+
+
+@njit(cache=True, inline="always")
+def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau):
+    """F = C·v + K·u + element, bearing and contact forces at (u, v); tangents ``work.KT``,
+    ``work.CT`` if asked.
+
+    Element states, bearing states and contact histories are the ``state``'s committed ones
+    (read only, as its open episodes ``c_closed``); the forces go to ``out``
+    (:class:`Outputs`); ``work.k22`` is (2, 2, 2) scratch. A plan bearing follows the path of
+    the step from the committed state (``u0``, ``v0`` at its start, duration ``tau`` [s]; 0 at
+    the committed state itself). Rows and columns from ``nd`` on are treated as diagonal
     (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
     Contacts act only while their episode is open (between a located closure and the located
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
     at closure), so that the step after a located closure starts from the right force.
     """
+    el_S, c_H, c_closed, b_S = state.el_S, state.c_H, state.c_closed, state.b_S
+    el_f, el_d, c_f, c_d, F, b_f, c_ft = out
+    KT, CT, k22 = work.KT, work.CT, work.k22
     C, K = model.C, model.K
     el_i, el_j, el_code, el_P = model.el_i, model.el_j, model.el_code, model.el_P
     c_B, c_gap, c_code, c_P = model.c_B, model.c_gap, model.c_code, model.c_P
@@ -122,21 +137,12 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
             CT[i, i] = C[i, i]
     # the plan bearings first: the isolator is the first element of a 1D model (the same sums)
     for e in range(b_f.shape[0]):
-        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
         kb, cb = k22[0], k22[1]
-        plan_friction_pendulum_path_trial(model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
-                                          u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
-        F[ix] += b_f[e, 0]
-        F[iy] += b_f[e, 1]
-        if want_tangent:
-            KT[ix, ix] += kb[0, 0]
-            KT[ix, iy] += kb[0, 1]
-            KT[iy, ix] += kb[1, 0]
-            KT[iy, iy] += kb[1, 1]
-            CT[ix, ix] += cb[0, 0]
-            CT[ix, iy] += cb[0, 1]
-            CT[iy, ix] += cb[1, 0]
-            CT[iy, iy] += cb[1, 1]
+        dofs = model.b_dofs[e]
+        ix, iy = dofs[0], dofs[1]
+        bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
+                           u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
+        _scatter(dofs, b_f[e], kb, cb, F, KT, CT, want_tangent)
     for e in range(el_code.size):
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -186,6 +192,22 @@ def _internal_force(u, v, model, el_S, c_H, c_closed, el_f, el_d, c_f, c_d, F, K
                                 CT[i, j] += cf * b[i] * b[j]
 
 
+@njit(cache=True, inline="always")
+def _scatter(dofs, f, k, c, F, KT, CT, want_tangent):
+    """Bᵀf into F, BᵀkB and BᵀcB into KT and CT: a bearing's forces ``f`` (m,) and tangents ``k``,
+    ``c`` (m, m) on its DOFs ``dofs`` (m,), the gather B the unit rows of those DOFs."""
+    m = f.size
+    for a in range(m):
+        F[dofs[a]] += f[a]
+    if want_tangent:
+        for a in range(m):
+            for b in range(m):
+                KT[dofs[a], dofs[b]] += k[a, b]
+        for a in range(m):
+            for b in range(m):
+                CT[dofs[a], dofs[b]] += c[a, b]
+
+
 WALL_SLIP_SPEED = 0.1
 """[in/s] The wall friction's regularisation: f_t = μ·f_n·tanh(v_t / WALL_SLIP_SPEED), full
 Coulomb friction μ·f_n once the base mat slides along the wall faster than a few times this."""
@@ -220,7 +242,6 @@ def _wall_friction(c, f, kf, cf, u, v, model, c_ft, F, KT, CT, want_tangent):
 def internal_force(model, state, work):
     """The state's forces at its own (u, v), without tangents (the initial equilibrium): element
     and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
-    _internal_force(state.u, state.v, model, state.el_S, state.c_H, state.c_closed, state.el_f,
-                    state.el_d, state.c_f, state.c_d, state.F, work.KT, work.CT, False,
-                    state.u.size, state.b_S, state.b_f, state.c_ft, work.k22, state.u, state.v,
-                    0.0)
+    out = Outputs(state.el_f, state.el_d, state.c_f, state.c_d, state.F, state.b_f, state.c_ft)
+    _internal_force(state.u, state.v, model, state, work, out, False, state.u.size, state.u,
+                    state.v, 0.0)

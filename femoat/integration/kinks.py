@@ -3,9 +3,9 @@ shortened to end just past the kink (:func:`find_kink`), so that a sample sits o
 the force; an explicit step, whose stages are all evaluated from the committed state, also
 lands on the turning points where a yielding element unloads (:func:`find_turn`)."""
 
+from femoat.bearings.dispatch import bearing_plan_branch, bearing_plan_turn_direction
 from femoat.compilation.jit import njit
 from femoat.integration.interpolants import crossing, hermite
-from femoat.plan.bearing import plan_friction_pendulum_z, plan_friction_pendulum_z_trial
 from femoat.structure.materials.kernels import material_commit, material_trial
 
 
@@ -40,20 +40,20 @@ def _bearing_path(e, th, hh, model, state, work):
 
 @njit(cache=True, inline="always")
 def _bearing_kink(e, hh, model, state, work):
-    """Fraction θ just past the plan bearing ``e``'s change between sticking and sliding inside
-    the trial step (|z_trial| crossing 1 along the step's path, each point from the committed
+    """Fraction θ just past the plan bearing ``e``'s change of branch (e.g. between sticking and
+    sliding) inside the trial step (along the step's path, each point from the committed
     state), 2 when it stays on one branch."""
-    p, s = model.b_P[e], state.b_S[e]
+    kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
     lo, hi = KINK_RESOLUTION, 1.0
     ux, uy = _bearing_path(e, lo, hh, model, state, work)
-    slide0 = plan_friction_pendulum_z_trial(p, s, ux, uy) > 1.0
+    branch0 = bearing_plan_branch(kind, p, s, ux, uy)
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-    if (plan_friction_pendulum_z_trial(p, s, work.u[ix], work.u[iy]) > 1.0) == slide0:
+    if bearing_plan_branch(kind, p, s, work.u[ix], work.u[iy]) == branch0:
         return 2.0
     for _ in range(KINK_BISECTIONS):
         mid = 0.5 * (lo + hi)
         ux, uy = _bearing_path(e, mid, hh, model, state, work)
-        if (plan_friction_pendulum_z_trial(p, s, ux, uy) > 1.0) == slide0:
+        if bearing_plan_branch(kind, p, s, ux, uy) == branch0:
             lo = mid
         else:
             hi = mid
@@ -62,11 +62,11 @@ def _bearing_kink(e, hh, model, state, work):
 
 @njit(cache=True, inline="always")
 def _bearing_turn(e, hh, model, state, work):
-    """Fraction θ just past the point where the sliding plan bearing ``e`` turns back (its
-    velocity along the committed friction direction z crosses zero: it unloads into sticking),
-    2 when it does not turn inside the step or is sticking."""
-    zx, zy = plan_friction_pendulum_z(state.b_S[e])
-    if zx * zx + zy * zy < 1.0 - 1e-9:
+    """Fraction θ just past the point where the plan bearing ``e`` turns back (its velocity along
+    its committed turning direction, e.g. a sliding bearing's friction direction, crosses zero:
+    it unloads), 2 when it does not turn inside the step or has no such direction."""
+    zx, zy = bearing_plan_turn_direction(model.b_kind[e], state.b_S[e])
+    if zx == 0.0 and zy == 0.0:
         return 2.0
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
     r0 = zx * state.v[ix] + zy * state.v[iy]

@@ -10,6 +10,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from femoat.bearings import registry as bearing_registry
 from femoat.integration import codes, methods
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
 from femoat.integration.limits import pack_limits
@@ -19,10 +20,7 @@ from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
 from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
-from femoat.plan.bearing import N_STATE as N_BEARING_STATE
-from femoat.plan.bearing import plan_friction_pendulum_commit, plan_friction_pendulum_energy
 from femoat.plan.model import PackedPlanModel
-from femoat.structure.materials.friction_pendulum import N_PARAMS as N_BEARING_PARAMS
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
@@ -268,7 +266,7 @@ def _bundles(packed, ag, u, v, settings):
     model = Model(M=packed.M, C=packed.C, K=packed.K, r=_ground(packed), ag=ag,
                   dof_axis=plan.dof_axis, base_xy=plan.base_xy, el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P,
-                  b_dofs=plan.b_dofs, b_P=plan.b_P, c_B=packed.c_B,
+                  b_kind=plan.b_kind, b_dofs=plan.b_dofs, b_P=plan.b_P, c_B=packed.c_B,
                   c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P, c_T=plan.c_T,
                   c_mu=plan.c_mu,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
@@ -467,7 +465,7 @@ def error_scales(packed, pga):
     return scale_open, scale_contact, err_ref, scale_accel
 
 
-_INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code", "bearing_dofs")
+_INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code", "bearing_kind", "bearing_dofs")
 _FLOAT_ARRAYS = ("M", "C", "K", "r", "R", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H",
                  "bearing_P", "bearing_S", "c_T", "c_friction")
 
@@ -500,6 +498,7 @@ class _PlanArrays(NamedTuple):
 
     dof_axis: np.ndarray
     base_xy: np.ndarray
+    b_kind: np.ndarray
     b_dofs: np.ndarray
     b_P: np.ndarray
     b_S: np.ndarray
@@ -511,16 +510,15 @@ def _plan_arrays(packed):
     """:class:`_PlanArrays` of ``packed``."""
     n, nc = packed.n, packed.c_code.size
     if not isinstance(packed, PackedPlanModel):
+        wp, _, ws = bearing_registry.widths()
         return _PlanArrays(np.zeros(n, dtype=np.int64), np.array([-1, -1], dtype=np.int64),
-                           np.zeros((0, 2), dtype=np.int64), np.zeros((0, N_BEARING_PARAMS)),
-                           np.zeros((0, N_BEARING_STATE)), np.zeros((nc, n)), np.zeros(nc))
-    nb = packed.bearing_dofs.size // 2
+                           np.zeros(0, dtype=np.int64), np.zeros((0, 2), dtype=np.int64),
+                           np.zeros((0, wp)), np.zeros((0, ws)), np.zeros((nc, n)), np.zeros(nc))
     return _PlanArrays(
         packed.dof_axis, np.array(packed.layout.floor_dofs[0, :2], dtype=np.int64),  # (writable:
         # a read-only array is another type to numba: another compiled signature)
-        packed.bearing_dofs.reshape(nb, 2), packed.bearing_P.reshape(nb, N_BEARING_PARAMS),
-        packed.bearing_S.reshape(nb, N_BEARING_STATE), np.ascontiguousarray(packed.c_T),
-        np.ascontiguousarray(packed.c_friction))
+        packed.bearing_kind, packed.bearing_dofs, packed.bearing_P, packed.bearing_S,
+        np.ascontiguousarray(packed.c_T), np.ascontiguousarray(packed.c_friction))
 
 
 def kernels():
@@ -568,15 +566,16 @@ def _initial_energy(kern, packed, model, u, v):
     """Kinetic plus strain energy of the initial state [kip·in] (elements and plan bearings
     start virgin at u)."""
     e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
-    el = np.zeros(packed.el_code.size)
+    el, bearing = np.zeros(packed.el_code.size), np.zeros(model.b_kind.size)
+    plan = _plan_arrays(packed)
     kern.initial_element_energies(packed.el_i, packed.el_j, packed.el_code, packed.el_P,
-                                  packed.el_S, u, np.zeros(packed.el_S.shape[1]), el)
+                                  packed.el_S, u, np.zeros(packed.el_S.shape[1]), el,
+                                  model.b_kind, model.b_dofs, model.b_P, plan.b_S, v,
+                                  np.zeros(plan.b_S.shape[1]), bearing)
     for x in el.tolist():
         e += x
-    for b, (ix, iy) in enumerate(model.b_dofs):
-        s0 = _plan_arrays(packed).b_S[b].copy()
-        plan_friction_pendulum_commit(model.b_P[b], s0, u[ix], u[iy], v[ix], v[iy])
-        e += plan_friction_pendulum_energy(model.b_P[b], s0)
+    for x in bearing.tolist():
+        e += x
     return float(e)
 
 
@@ -588,11 +587,10 @@ def _energy(kern, packed, model, state, e_initial):
     kinetic = 0.5 * _quadratic(v, packed.M)
     linear_strain = 0.5 * _quadratic(u, packed.K)
     el_rec, c_rec = np.zeros(packed.el_code.size), np.zeros(packed.c_code.size)
+    b_rec = np.zeros(model.b_kind.size)
     kern.stored_energies(packed.el_code, packed.el_P, el_S, packed.c_code, packed.c_P, c_H, c_d,
-                         c_closed, el_rec, c_rec)
+                         c_closed, el_rec, c_rec, model.b_kind, model.b_P, state.b_S, b_rec)
     el_diss = el_W - el_rec
-    b_rec = np.array([plan_friction_pendulum_energy(model.b_P[b], state.b_S[b])
-                      for b in range(model.b_dofs.shape[0])])
     b_diss = state.b_W - b_rec
     iso = [e for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
     sto = [e for e, role in enumerate(packed.el_roles) if role.kind != ISOLATOR]

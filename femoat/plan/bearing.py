@@ -1,291 +1,37 @@
-"""Bidirectional friction pendulum bearing: friction coupled in plan.
+"""The bidirectional friction pendulum: the single friction pendulum's plan face.
 
-    F = (W/R)·u + μ(|v|)·W·z          (F, u, v, z vectors in the plan x, y)
-
-u [in] is the bearing displacement, v [in/s] its velocity. The restoring force (W/R)·u is the
-spherical surface's, the same stiffness in every direction. The friction force is μ·W times a
-vector z in the unit disk that follows a circular elastic-perfectly-plastic rule with yield
-displacement u_y, integrated by radial return (the closest point on the disk):
-
-    z_trial = z_c + (u − u_c)/u_y
-    z = z_trial                  if |z_trial| <= 1   (sticking: stiffness μW/u_y in every direction)
-    z = z_trial/|z_trial|        otherwise           (sliding: friction force μW along z)
-
-so the friction force never exceeds μW in magnitude, whatever the direction of sliding (two
-uncoupled 1D bearings would resist with μW per axis, √2·μW at 45°). Along one axis (u, v and the
-committed z on x) this is :mod:`femoat.structure.materials.friction_pendulum` exactly, and under
-a straight motion along any line it is that bearing along the line.
-
-Consistent tangent (for a Newton solver), with n = z when sliding:
-
-    ∂F/∂u = (W/R)·I + μW·∂z/∂u,   ∂z/∂u = I/u_y (sticking),  (I − n nᵀ)/(u_y·|z_trial|) (sliding)
-    ∂F/∂v = W·z ⊗ ∂μ/∂v
-
-Friction coefficient as in the 1D bearing, of the speed |v| smoothed the same way:
-μ = μ_fast − (μ_fast − μ_slow)·exp(−a·s), s = sqrt(|v|² + ε²) − ε, ε = ``v_reg``; so
-∂μ/∂v = (μ_fast − μ_slow)·a·exp(−a·s)·v/sqrt(|v|² + ε²), continuous and zero at v = 0.
-
-OpenSees twin: ``flatSliderBearing`` in 3D (FlatSliderSimple3d) with a ``Coulomb`` friction
-model and kInit = μW/u_y uses the same circular yield surface, radial return and tangent; its
-normal force N comes from its axial material (the basic axial force, with no-tension uplift),
-so N = W needs an axial load on the slider node; in parallel with a linear W/R spring in x and y
-it is this bearing (cross-checked in ``tests/test_plan_bearing.py``). ``singleFPBearing`` adds
-the second-order growth of N with V·u/R, not modelled here.
-
-Params ``p`` are the 1D bearing's, ``[W, R, u_y, mu_slow, mu_fast, a, v_reg]`` (kip, in, in, -,
--, s/in, in/s). State ``s = [u_cx, u_cy, z_cx, z_cy, v_cx, v_cy]``: committed displacement [in],
-hysteretic vector [-], velocity [in/s].
-
-Recoverable energy: (W/R)·|u|²/2 + μ·W·u_y·|z|²/2, with μ at the committed velocity.
+It lives with the other bearing kinds in :mod:`femoat.bearings.friction_pendulum` (one module for
+one axis and plan); these are its names as the plan package has always given them.
 """
 
-from dataclasses import dataclass
+from femoat.bearings.friction_pendulum import (
+    MAX_SUBSTEPS,
+    N_PARAMS,
+    N_STATE_PLAN,
+    BidirectionalFrictionPendulum,
+    plan_friction_coefficient,
+)
+from femoat.bearings.friction_pendulum import plan_commit as plan_friction_pendulum_path_commit
+from femoat.bearings.friction_pendulum import plan_energy as plan_friction_pendulum_energy
+from femoat.bearings.friction_pendulum import plan_return_commit as plan_friction_pendulum_commit
+from femoat.bearings.friction_pendulum import plan_return_trial as plan_friction_pendulum_trial
+from femoat.bearings.friction_pendulum import plan_trial as plan_friction_pendulum_path_trial
+from femoat.bearings.friction_pendulum import plan_z as plan_friction_pendulum_z
+from femoat.bearings.friction_pendulum import plan_z_trial as plan_friction_pendulum_z_trial
 
-import numpy as np
+N_STATE = N_STATE_PLAN
 
-from femoat.compilation.jit import njit
-from femoat.structure.materials.friction_pendulum import N_PARAMS, FrictionPendulum
-
-N_STATE = 6
-_W, _R, _UY, _MU_SLOW, _MU_FAST, _A, _VREG = range(N_PARAMS)
-_UCX, _UCY, _ZCX, _ZCY, _VCX, _VCY = range(N_STATE)
-
-
-@njit(cache=True)
-def plan_friction_coefficient(p, vx, vy):
-    """μ [-] and ∂μ/∂v_x, ∂μ/∂v_y [s/in] at the plan velocity (vx, vy) [in/s]."""
-    if p[_MU_FAST] == p[_MU_SLOW]:  # constant friction, as in 1D
-        return p[_MU_FAST], 0.0, 0.0
-    eps = p[_VREG]
-    root = np.sqrt(vx * vx + vy * vy + eps * eps)
-    e = np.exp(-p[_A] * (root - eps))
-    dmu = p[_MU_FAST] - p[_MU_SLOW]
-    slope = dmu * p[_A] * e
-    return p[_MU_FAST] - dmu * e, slope * (vx / root), slope * (vy / root)
-
-
-@njit(cache=True)
-def _z(p, s, ux, uy):
-    """Hysteretic vector (z_x, z_y) after radial return, and |z_trial|."""
-    zx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
-    zy = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
-    norm = np.sqrt(zx * zx + zy * zy)
-    if norm > 1.0:
-        return zx / norm, zy / norm, norm
-    return zx, zy, norm
-
-
-MAX_SUBSTEPS = 256
-"""The most pieces a step's path is cut into by :func:`_path_z` (each at most u_y long)."""
-
-
-@njit(cache=True, inline="always")
-def _hermite(th, h, x0, v0, x1, v1):
-    """The cubic Hermite interpolant of a path of duration ``h`` at fraction ``th``."""
-    t2 = th * th
-    t3 = t2 * th
-    return ((2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + th) * h * v0
-            + (-2 * t3 + 3 * t2) * x1 + (t3 - t2) * h * v1)
-
-
-@njit(cache=True, inline="always")
-def _straight(zx, zy, dx, dy, u_y):
-    """(z_x, z_y, |z_trial|): the exact hysteresis along a straight piece (dx, dy) [in] from z.
-
-    The rule's continuous form: ż = u̇/u_y inside the disk (sticking); on its rim, moving
-    outwards (z·u̇ > 0), ż = (u̇ − (z·u̇)·z)/u_y (sliding). Along a straight piece of direction
-    d the sticking part is a straight line in z up to the rim (|z + σ·d| = 1, σ ≥ 0 the root
-    of σ² + 2(z·d)σ + |z|² − 1 = 0); then the angle φ from d to z obeys dφ/ds = −sin φ/u_y, so
-    tan(φ/2) decays as exp(−s/u_y). |z_trial| is the single return's, |z + piece/u_y|, for the
-    tangent."""
-    length = np.sqrt(dx * dx + dy * dy)
-    tx, ty = zx + dx / u_y, zy + dy / u_y
-    trial = np.sqrt(tx * tx + ty * ty)
-    if length == 0.0:
-        return zx, zy, trial
-    ex, ey = dx / length, dy / length
-    b = zx * ex + zy * ey
-    c = zx * zx + zy * zy - 1.0
-    sigma = -b + np.sqrt(max(b * b - c, 0.0))  # [-] z-travel to the rim
-    if sigma * u_y >= length:
-        return tx, ty, trial  # sticking all along
-    zx, zy = zx + sigma * ex, zy + sigma * ey
-    rest = length - sigma * u_y
-    cos0 = zx * ex + zy * ey
-    sin0 = ex * zy - ey * zx
-    t = sin0 / (1.0 + cos0) * np.exp(-rest / u_y) if cos0 > -1.0 else 0.0
-    cos1 = (1.0 - t * t) / (1.0 + t * t)
-    sin1 = 2.0 * t / (1.0 + t * t)
-    return cos1 * ex - sin1 * ey, cos1 * ey + sin1 * ex, max(trial, 1.0 + 1e-15)
-
-
-@njit(cache=True)
-def _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
-    """(z_x, z_y, |z_trial|) at the end (ux, uy) of a step of duration ``tau`` [s] that starts
-    at the committed state with velocity (v0x, v0y) and ends with (vx, vy) [in/s].
-
-    A single radial return from the committed state follows the chord of the step: on a curved
-    path its friction direction lags the sliding direction by half the step's turn, an error of
-    first order in the step, and is a backward-Euler step of the rule's continuous form. Here
-    the step's cubic Hermite path is cut into straight pieces at most u_y long (at most
-    MAX_SUBSTEPS), each integrated exactly (:func:`_straight`): z then follows the path as the
-    continuous rule does. Motion along a line through z (the path straight and parallel to
-    z, e.g. along one axis) is one radial return, which is exact there: :func:`_z`, the 1D
-    bearing's bits."""
-    dx, dy = ux - s[_UCX], uy - s[_UCY]
-    cross = abs(dx * v0y - dy * v0x) + abs(dx * vy - dy * vx) + abs(dx * s[_ZCY] - dy * s[_ZCX])
-    length = np.sqrt(dx * dx + dy * dy)
-    if tau <= 0.0 or cross == 0.0 or length == 0.0:
-        return _z(p, s, ux, uy)
-    pieces = min(MAX_SUBSTEPS, max(1, int(np.ceil(length / p[_UY]))))
-    zx, zy = s[_ZCX], s[_ZCY]
-    px, py = s[_UCX], s[_UCY]
-    norm = 0.0
-    for k in range(1, pieces + 1):
-        if k == pieces:
-            qx, qy = ux, uy
-        else:
-            th = k / pieces
-            qx = _hermite(th, tau, u0x, v0x, ux, vx)
-            qy = _hermite(th, tau, u0y, v0y, uy, vy)
-        zx, zy, norm = _straight(zx, zy, qx - px, qy - py, p[_UY])
-        px, py = qx, qy
-    return zx, zy, norm
-
-
-@njit(cache=True)
-def plan_friction_pendulum_path_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
-    """:func:`plan_friction_pendulum_trial` at the end of a step of duration ``tau`` [s] from
-    the committed state (start velocity (v0x, v0y) [in/s]), the friction direction followed
-    along the step's path (:func:`_path_z`). The tangent is the last return's (Newton's and
-    the error estimate's; the force is exact to the path)."""
-    w = p[_W]
-    k_r = w / p[_R]
-    zx, zy, norm = _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
-    mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
-    f[0] = k_r * ux + mu * w * zx
-    f[1] = k_r * uy + mu * w * zy
-    if norm > 1.0:  # sliding: the softer of the last piece's and the chord's tangent
-        norm = max(norm, _z(p, s, ux, uy)[2])
-    _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c)
-
-
-@njit(cache=True)
-def plan_friction_pendulum_path_commit(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
-    """:func:`plan_friction_pendulum_commit` along the step's path (:func:`_path_z`)."""
-    zx, zy, _ = _path_z(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
-    s[_UCX] = ux
-    s[_UCY] = uy
-    s[_ZCX] = zx
-    s[_ZCY] = zy
-    s[_VCX] = vx
-    s[_VCY] = vy
-
-
-@njit(cache=True)
-def plan_friction_pendulum_z_trial(p, s, ux, uy):
-    """|z_trial| [-] at the trial (ux, uy) [in] from the committed state ``s``: above 1 the
-    bearing slides, at or below it sticks (the branch the solver's kink search follows)."""
-    zx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
-    zy = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
-    return np.sqrt(zx * zx + zy * zy)
-
-
-@njit(cache=True)
-def plan_friction_pendulum_z(s):
-    """The committed hysteretic vector (z_x, z_y) [-] (on the unit circle while sliding)."""
-    return s[_ZCX], s[_ZCY]
-
-
-@njit(cache=True)
-def plan_friction_pendulum_trial(p, s, ux, uy, vx, vy, f, k, c):
-    """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] (2, 2) and ∂f/∂v ``c`` [kip·s/in] (2, 2),
-    written in place, at the trial (ux, uy) [in], (vx, vy) [in/s] from the committed state
-    ``s``, which is not modified: one radial return (a path of no duration)."""
-    plan_friction_pendulum_path_trial(p, s, s[_UCX], s[_UCY], 0.0, 0.0, ux, uy, vx, vy, 0.0, f, k,
-                                      c)
-
-
-@njit(cache=True, inline="always")
-def _tangents(p, w, k_r, mu, dmu_x, dmu_y, zx, zy, norm, k, c):
-    """∂f/∂u into ``k``, ∂f/∂v into ``c`` (module docstring) at z after a return whose trial
-    had length ``norm``."""
-    if norm > 1.0:  # sliding: μW·(I − z zᵀ)/(u_y·|z_trial|)
-        g = mu * w / (p[_UY] * norm)
-        k[0, 0] = k_r + g * (1.0 - zx * zx)
-        k[0, 1] = -g * zx * zy
-        k[1, 0] = k[0, 1]
-        k[1, 1] = k_r + g * (1.0 - zy * zy)
-    else:  # sticking: μW/u_y in every direction (as the 1D bearing rounds it: μW·(1/u_y))
-        k[0, 0] = k_r + mu * w * (1.0 / p[_UY])
-        k[0, 1] = 0.0
-        k[1, 0] = 0.0
-        k[1, 1] = k[0, 0]
-    c[0, 0] = w * zx * dmu_x
-    c[0, 1] = w * zx * dmu_y
-    c[1, 0] = w * zy * dmu_x
-    c[1, 1] = w * zy * dmu_y
-
-
-@njit(cache=True)
-def plan_friction_pendulum_commit(p, s, ux, uy, vx, vy):
-    """Advance the committed state ``s`` in place to the converged (ux, uy), (vx, vy): one
-    radial return (a path of no duration)."""
-    plan_friction_pendulum_path_commit(p, s, s[_UCX], s[_UCY], 0.0, 0.0, ux, uy, vx, vy, 0.0)
-
-
-@njit(cache=True)
-def plan_friction_pendulum_energy(p, s):
-    """Recoverable energy [kip·in] at the committed state (module docstring)."""
-    w = p[_W]
-    mu, _, _ = plan_friction_coefficient(p, s[_VCX], s[_VCY])
-    u2 = s[_UCX] * s[_UCX] + s[_UCY] * s[_UCY]
-    z2 = s[_ZCX] * s[_ZCX] + s[_ZCY] * s[_ZCY]
-    return 0.5 * w / p[_R] * u2 + 0.5 * mu * w * p[_UY] * z2
-
-
-@dataclass(frozen=True)
-class BidirectionalFrictionPendulum:
-    """Single friction-pendulum bearing in plan, friction coupled (defaults: the paper's bearing).
-
-    Parameters (validated as the 1D :class:`~femoat.structure.materials.FrictionPendulum`)
-    ----------
-    W : float
-        Weight carried by the bearing [kip], > 0.
-    R : float
-        Effective radius of the sliding surface [in], > 0 (restoring stiffness W/R).
-    u_y : float
-        Yield displacement of the friction spring [in], > 0 (sticking stiffness μ·W/u_y).
-    mu : float
-        Friction coefficient [-] in (0, 1): constant, or μ_slow (at v = 0) with ``mu_fast``.
-    mu_fast : float or None
-        Friction coefficient at high sliding speed [-] in (0, 1); ``None`` for constant friction.
-    a : float
-        Rate parameter of the velocity dependence [s/in], > 0 when ``mu_fast`` is given.
-    v_reg : float
-        Smoothing speed ε of |v| at v = 0 [in/s], > 0; only used with ``mu_fast``.
-    """
-
-    W: float = 33.0
-    R: float = 30.0
-    u_y: float = 0.01
-    mu: float = 0.06
-    mu_fast: float | None = None
-    a: float = 0.0
-    v_reg: float = 1e-3
-
-    def __post_init__(self):
-        self.uniaxial()  # the same parameters, the same checks and messages
-
-    def uniaxial(self) -> FrictionPendulum:
-        """This bearing along one axis: the 1D friction pendulum with the same parameters."""
-        return FrictionPendulum(W=self.W, R=self.R, u_y=self.u_y, mu=self.mu,
-                                mu_fast=self.mu_fast, a=self.a, v_reg=self.v_reg)
-
-    def params(self) -> np.ndarray:
-        """``p`` for the kernels: the 1D bearing's params."""
-        return self.uniaxial().params()
-
-    def initial_state(self) -> np.ndarray:
-        """Virgin committed state ``s``: at rest at the centre, z = 0."""
-        return np.zeros(N_STATE)
+__all__ = [
+    "MAX_SUBSTEPS",
+    "N_PARAMS",
+    "N_STATE",
+    "BidirectionalFrictionPendulum",
+    "plan_friction_coefficient",
+    "plan_friction_pendulum_commit",
+    "plan_friction_pendulum_energy",
+    "plan_friction_pendulum_path_commit",
+    "plan_friction_pendulum_path_trial",
+    "plan_friction_pendulum_trial",
+    "plan_friction_pendulum_z",
+    "plan_friction_pendulum_z_trial",
+]

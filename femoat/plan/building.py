@@ -18,8 +18,9 @@ The isolator is the bidirectional friction pendulum
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
+from femoat.bearings import registry as bearing_registry
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.structure.building import Building, check_story
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
@@ -75,10 +76,10 @@ class PlanBuilding:
             raise ValueError("isolator: a FrictionPendulum is the 1D bearing; in plan use "
                              "femoat.plan.BidirectionalFrictionPendulum with the same parameters "
                              "(friction coupled in plan).")
-        if self.isolator is not None and not isinstance(
-                self.isolator, (BidirectionalFrictionPendulum, Elastic)):
-            raise ValueError("isolator must be a BidirectionalFrictionPendulum, an Elastic spring "
-                             "or None.")
+        bearings = bearing_registry.plan_classes()
+        if self.isolator is not None and not isinstance(self.isolator, (*bearings, Elastic)):
+            names = ", ".join(c.__name__ for c in bearings)
+            raise ValueError(f"isolator must be a {names}, an Elastic spring or None.")
         for axis in AXES:
             key = f"stories_{axis}"
             stories = getattr(self, key)
@@ -100,7 +101,8 @@ class PlanBuilding:
         if axis not in AXES:
             raise ValueError(f"axis = {axis!r}: use 'x' or 'y'.")
         iso = self.isolator
-        if isinstance(iso, BidirectionalFrictionPendulum):
+        kind = None if iso is None else bearing_registry.kind_of(iso)
+        if kind is not None and bearing_registry.module(kind).AXIS_CLASS is not type(iso):
             iso = iso.uniaxial()
         return Building(
             base_weight=self.base_weight, floor_weights=tuple(self.floor_weights), isolator=iso,
@@ -116,9 +118,11 @@ class PlanBuilding:
         if not isinstance(building, Building):
             raise ValueError("building must be a femoat.structure.building.Building.")
         iso = building.isolator
-        if isinstance(iso, FrictionPendulum):
-            iso = BidirectionalFrictionPendulum(W=iso.W, R=iso.R, u_y=iso.u_y, mu=iso.mu,
-                                                mu_fast=iso.mu_fast, a=iso.a, v_reg=iso.v_reg)
+        kind = None if iso is None else bearing_registry.kind_of(iso)
+        if kind is not None:  # the bearing's plan face, the same parameters
+            plan_class = bearing_registry.module(kind).PLAN_CLASS
+            if plan_class is not type(iso):
+                iso = plan_class(**{f.name: getattr(iso, f.name) for f in fields(iso)})
         return cls(base_weight=building.base_weight, floor_weights=tuple(building.floor_weights),
                    isolator=iso, stories_x=tuple(building.stories),
                    stories_y=tuple(building.stories if stories_y is None else stories_y),

@@ -19,8 +19,9 @@ direction in plan through a gather row b (deformation b·u):
   axis, a wall mode's participation L_i along its normal (signed: the mode points away);
 * uniaxial elements (stories, an Elastic isolator): DOFs i (top) and j (bottom, −1 the ground)
   on the element's axis (``el_axis`` 0 x, 1 y), material code, params, state, role;
-* the bidirectional bearing: ``bearing_dofs`` (the base mat's x, y), params and state of
-  :mod:`femoat.plan.bearing` (empty when the isolator is not a friction pendulum);
+* the plan bearing (a kind of :mod:`femoat.bearings`): ``bearing_kind``, ``bearing_dofs`` (the
+  base mat's x, y), params and plan state, one row (none when the isolator is an Elastic spring
+  or None);
 * contacts, one row per wall: ``c_B`` (δ = c_B·u − gap, n at the base mat and −φ_i on the
   wall's modes), ``c_T`` (the base mat's slip along the wall, t at the base mat), gap, law
   code, params, history, friction coefficient, side.
@@ -31,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from femoat.contact.kernels import N_HISTORY, N_PARAMS
-from femoat.plan.bearing import BidirectionalFrictionPendulum
+from femoat.bearings import registry as bearing_registry
 from femoat.plan.building import AXES, PlanBuilding
 from femoat.plan.moat import SIDES, PlanWall, rectangular_moat
 from femoat.structure.pounding import PoundingModel, _stack, wall_modes
@@ -153,7 +154,8 @@ class PlanModel:
                 _add_spring(K, i, j, geometric[k])
                 elements.append((i, j, a, mat, Role(STORY, k + 1)))
         iso = b.isolator
-        plan_bearing = isinstance(iso, BidirectionalFrictionPendulum)
+        kind = None if iso is None else bearing_registry.kind_of(iso)
+        plan_bearing = kind is not None
         if iso is not None and not plan_bearing:  # an Elastic isolator: one spring per axis
             elements = [(dofs[0, a], -1, a, iso, Role(ISOLATOR)) for a in range(2)] + elements
         contacts = []
@@ -178,9 +180,13 @@ class PlanModel:
             el_S=_stack([e[3].initial_state() for e in elements]),
             el_roles=tuple(e[4] for e in elements),
             el_materials=[e[3] for e in elements],
-            bearing_dofs=np.array(dofs[0, :2] if plan_bearing else [], dtype=np.int64),
-            bearing_P=iso.params() if plan_bearing else np.zeros(0),
-            bearing_S=iso.initial_state() if plan_bearing else np.zeros(0),
+            bearing_kind=np.array([kind] if plan_bearing else [], dtype=np.int64),
+            bearing_dofs=np.array([dofs[0, :2]] if plan_bearing else [], dtype=np.int64
+                                  ).reshape(-1, 2),
+            bearing_P=_stack([iso.params()] if plan_bearing else [],
+                             width=bearing_registry.widths()[0]),
+            bearing_S=_stack([iso.initial_state_plan()] if plan_bearing else [],
+                             width=bearing_registry.widths()[2]),
             c_B=np.array([c[0] for c in contacts]).reshape(len(contacts), n),
             c_T=np.array([c[1] for c in contacts]).reshape(len(contacts), n),
             c_gap=np.array([c[2].gap for c in contacts], dtype=float),
@@ -206,8 +212,10 @@ def _add_spring(A, i, j, value):
 class PackedPlanModel:
     """Plain arrays of a :class:`PlanModel` (mutable copies: a solver updates the states).
     Fields as in :class:`~femoat.structure.pounding.PackedModel`, plus (module docstring):
-    ``R`` (n, 2) [kip·s²/in], ``layout``, ``el_axis``, ``bearing_dofs``, ``bearing_P``,
-    ``bearing_S``, ``c_T`` and ``c_friction`` [-]."""
+    ``R`` (n, 2) [kip·s²/in], ``layout``, ``el_axis``, the plan bearings' rows
+    ``bearing_kind`` (nb,) (:mod:`femoat.bearings.registry`), ``bearing_dofs`` (nb, 2),
+    ``bearing_P`` and ``bearing_S`` (nb, the registry's widest), ``c_T`` and ``c_friction``
+    [-]."""
 
     M: np.ndarray
     C: np.ndarray
@@ -223,6 +231,7 @@ class PackedPlanModel:
     el_S: np.ndarray
     el_roles: tuple
     el_materials: list
+    bearing_kind: np.ndarray
     bearing_dofs: np.ndarray
     bearing_P: np.ndarray
     bearing_S: np.ndarray

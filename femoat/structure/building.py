@@ -19,6 +19,7 @@ values are femoat's, and every one is a parameter):
 import math
 from dataclasses import dataclass, field
 
+from femoat.bearings import registry as bearing_registry
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
 
 
@@ -91,8 +92,13 @@ class Building:
             )
         for s in self.stories:
             check_story(s)
-        if self.isolator is not None and not isinstance(self.isolator, (FrictionPendulum, Elastic)):
-            raise ValueError("isolator must be a FrictionPendulum, an Elastic spring or None.")
+        bearings = bearing_registry.axis_classes()
+        if self.isolator is not None and not isinstance(self.isolator, (*bearings, Elastic)):
+            if type(self.isolator) in bearing_registry.plan_classes():
+                raise ValueError(f"isolator: a {type(self.isolator).__name__} is a plan bearing; "
+                                 "a 1D building takes its one-axis form (.uniaxial()).")
+            names = ", ".join(c.__name__ for c in bearings)
+            raise ValueError(f"isolator must be a bearing ({names}), an Elastic spring or None.")
         if not (math.isfinite(self.story_damping_ratio) and self.story_damping_ratio >= 0):
             raise ValueError(f"story_damping_ratio = {self.story_damping_ratio!r} must be >= 0.")
         if not (math.isfinite(self.story_damping_period) and self.story_damping_period > 0):

@@ -37,7 +37,7 @@ Units: kip, in, s.
 import numpy as np
 
 from femoat.compilation.jit import njit
-from femoat.integration.forces import _internal_force, ground_load
+from femoat.integration.forces import _internal_force, ground_load, trial_outputs
 from femoat.integration.codes import E_INPUT, E_VISCOUS, S_REJECT_ERR
 
 # ---- the Dormand-Prince 5(4) tableau -------------------------------------------------------
@@ -218,10 +218,8 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
                 sv += aij * ka[j, i]
             work.u[i] = u0[i] + hh * su
             work.v[i] = v0[i] + hh * sv
-        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
-                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT,
-                        s == N_STAGES - 1, nb, state.b_S, work.bf, work.cft, work.k22, u0, v0,
-                        DP_C[s] * hh)
+        _internal_force(work.u, work.v, model, state, work, trial_outputs(work),
+                        s == N_STAGES - 1, nb, u0, v0, DP_C[s] * hh)
         ag = work.ag_stage
         for k in range(ag.size):
             ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])

@@ -20,7 +20,13 @@ import numpy as np
 from femoat.compilation.jit import njit
 from femoat.integration.codes import S_NEWTON, S_REJECT_NEWTON
 from femoat.integration.events import H_START, first_contact_step, open_episode, restart
-from femoat.integration.forces import _internal_force, _solve_dense, contact_rate, ground_load
+from femoat.integration.forces import (
+    _internal_force,
+    _solve_dense,
+    contact_rate,
+    ground_load,
+    trial_outputs,
+)
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
 
 NAME = "newmark"
@@ -216,9 +222,8 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         it += 1
         amax = _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         nd = _dense_size(n_coupled, any_closed, model, work)
-        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
-                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, True, nd,
-                        state.b_S, work.bf, work.cft, work.k22, state.u, state.v, hh)
+        _internal_force(work.u, work.v, model, state, work, trial_outputs(work), True, nd,
+                        state.u, state.v, hh)
         _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work)
         if it > 1 and _residual_is_small(bh2, ntol, amax, scale, work):
             converged = True
@@ -236,9 +241,8 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
     if converged and not evaluated:
         # final kinematics and forces at the converged acceleration
         _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
-        _internal_force(work.u, work.v, model, state.el_S, state.c_H, state.c_closed, work.ef,
-                        work.ed, work.cf, work.cd, work.F, work.KT, work.CT, False, nd,
-                        state.b_S, work.bf, work.cft, work.k22, state.u, state.v, hh)
+        _internal_force(work.u, work.v, model, state, work, trial_outputs(work), False, nd,
+                        state.u, state.v, hh)
     return converged
 
 

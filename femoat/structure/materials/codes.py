@@ -7,4 +7,8 @@ as compile-time constants).
 ELASTIC = 0
 BILINEAR = 1
 IMK = 2
-FRICTION_PENDULUM = 3
+from femoat.bearings.registry import AXIS_CODE_START as BEARING  # noqa: E402
+
+# BEARING: the first bearing kind's code; kind k of femoat.bearings.registry has code BEARING + k
+FRICTION_PENDULUM = BEARING + 0
+"""The single friction pendulum (:mod:`femoat.bearings.friction_pendulum`), kind 0."""

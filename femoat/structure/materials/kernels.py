@@ -12,51 +12,49 @@ the elastic range). Every material has a params array ``p`` and a committed stat
 * :func:`material_recoverable_energy` is the elastic energy [kip·in] stored at the committed
   state: hysteretic dissipation = ∫f du − recoverable.
 
+The isolation bearings' codes start at ``BEARING`` (one code per bearing kind of
+:mod:`femoat.bearings.registry`, its one-axis kernels through the registry's dispatcher).
+
 Nothing here allocates.
 """
 
 import numpy as np
 
+from femoat.bearings import registry
+from femoat.bearings.dispatch import bearing_axis_commit, bearing_axis_energy, bearing_axis_trial
 from femoat.compilation.jit import njit
-from femoat.structure.materials import bilinear, elastic, friction_pendulum, imk
-from femoat.structure.materials.codes import BILINEAR, ELASTIC, FRICTION_PENDULUM, IMK
+from femoat.structure.materials import bilinear, elastic, imk
 from femoat.structure.materials.bilinear import bilinear_commit, bilinear_energy, bilinear_trial
+from femoat.structure.materials.codes import BEARING, BILINEAR, ELASTIC, IMK
 from femoat.structure.materials.elastic import elastic_commit, elastic_energy, elastic_trial
-from femoat.structure.materials.friction_pendulum import (
-    friction_pendulum_commit,
-    friction_pendulum_energy,
-    friction_pendulum_trial,
-)
 from femoat.structure.materials.imk import imk_commit, imk_energy, imk_trial
 
-_STATE_SIZES = {
-    ELASTIC: elastic.N_STATE,
-    BILINEAR: bilinear.N_STATE,
-    IMK: imk.N_STATE,
-    FRICTION_PENDULUM: friction_pendulum.N_STATE,
+_SIZES = {  # code: (params, state)
+    ELASTIC: (elastic.N_PARAMS, elastic.N_STATE),
+    BILINEAR: (bilinear.N_PARAMS, bilinear.N_STATE),
+    IMK: (imk.N_PARAMS, imk.N_STATE),
 }
-_PARAM_SIZES = {
-    ELASTIC: elastic.N_PARAMS,
-    BILINEAR: bilinear.N_PARAMS,
-    IMK: imk.N_PARAMS,
-    FRICTION_PENDULUM: friction_pendulum.N_PARAMS,
-}
+
+
+def _sizes(code):
+    if code in _SIZES:
+        return _SIZES[code]
+    kinds = registry.kinds()
+    if isinstance(code, int) and BEARING <= code < BEARING + len(kinds):
+        mod = registry.module(code - BEARING)
+        return mod.N_PARAMS, mod.N_STATE_AXIS
+    known = sorted(_SIZES) + list(range(BEARING, BEARING + len(kinds)))
+    raise ValueError(f"code = {code!r}: unknown material code; use one of {known}.")
 
 
 def state_size(code: int) -> int:
     """Length of the committed-state array of material ``code``."""
-    try:
-        return _STATE_SIZES[code]
-    except KeyError:
-        raise ValueError(
-            f"code = {code!r}: unknown material code; use one of {sorted(_STATE_SIZES)}."
-        ) from None
+    return _sizes(code)[1]
 
 
 def param_size(code: int) -> int:
     """Length of the params array of material ``code``."""
-    state_size(code)
-    return _PARAM_SIZES[code]
+    return _sizes(code)[0]
 
 
 @njit(cache=True)
@@ -68,8 +66,8 @@ def material_trial(code, p, s, u, v):
         return bilinear_trial(p, s, u)
     if code == IMK:
         return imk_trial(p, s, u)
-    if code == FRICTION_PENDULUM:
-        return friction_pendulum_trial(p, s, u, v)
+    if code >= BEARING:
+        return bearing_axis_trial(code - BEARING, p, s, u, v)
     return np.nan, np.nan, np.nan
 
 
@@ -82,8 +80,8 @@ def material_commit(code, p, s, u, v):
         bilinear_commit(p, s, u)
     elif code == IMK:
         imk_commit(p, s, u)
-    elif code == FRICTION_PENDULUM:
-        friction_pendulum_commit(p, s, u, v)
+    elif code >= BEARING:
+        bearing_axis_commit(code - BEARING, p, s, u, v)
 
 
 @njit(cache=True)
@@ -95,6 +93,6 @@ def material_recoverable_energy(code, p, s):
         return bilinear_energy(p, s)
     if code == IMK:
         return imk_energy(p, s)
-    if code == FRICTION_PENDULUM:
-        return friction_pendulum_energy(p, s)
+    if code >= BEARING:
+        return bearing_axis_energy(code - BEARING, p, s)
     return np.nan

@@ -1,0 +1,27 @@
+"""Isolation bearings: one module per bearing kind, one line each in the registry.
+
+A bearing kind is one module (the single friction pendulum, :mod:`femoat.bearings.friction_pendulum`,
+is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
+
+* on the Python side: ``KEY`` (its name in scenario and suite files, ``[building.isolator] type``),
+  ``N_PARAMS``, ``N_STATE_AXIS``, ``N_STATE_PLAN`` (its params and committed-state widths on one
+  axis and in plan), ``AXIS_CLASS`` and ``PLAN_CLASS`` (its validated frozen dataclasses, with
+  units; they may be one class), each with ``params()``, ``initial_state_axis()``,
+  ``initial_state_plan()``, ``yield_deformation`` [in] and ``capacity`` [in];
+* compiled kernels (numba, no allocation), each from the committed state ``s``, which only the
+  commits modify:
+
+  - ``axis_trial(p, s, u, v) -> (f, df/du, df/dv)``, ``axis_commit(p, s, u, v)``,
+    ``axis_energy(p, s)``: the bearing on one axis (u [in], v [in/s], f [kip]);
+  - ``plan_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c)``: force ``f`` (2,),
+    ∂f/∂u ``k`` and ∂f/∂v ``c`` (2, 2) in place at the end (ux, uy), (vx, vy) of a step of
+    duration ``tau`` [s] from the committed state (start velocity (v0x, v0y)); ``tau = 0``: a
+    path of no duration; ``plan_commit(...)`` with the same path arguments, ``plan_energy(p, s)``;
+  - ``plan_branch(p, s, ux, uy) -> int``: the branch of a trial point (the solver lands a step
+    where it changes) and ``plan_turn_direction(s) -> (dx, dy)``: the committed direction along
+    which a velocity turning negative unloads the bearing ((0, 0): none).
+
+Along one axis the plan kernels equal the one-axis kernels (each kind's tests hold it). Energy:
+the recoverable energy at the committed state; the loop integrates the work, their difference is
+the bearing's dissipation.
+"""

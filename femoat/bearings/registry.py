@@ -1,0 +1,229 @@
+"""The bearing registry: which bearing kinds the compiled loop knows, and their dispatcher.
+
+A bearing kind is one module (:mod:`femoat.bearings`' docstring lists what it provides); this
+list names them. numba cannot add a branch at run time, so the loop calls the kinds through a
+generated module, :mod:`femoat.bearings.dispatch`, committed beside this file: one ``if kind ==``
+chain per kernel. Importing the dispatcher checks that it was generated from this list; after
+adding a line here, write it anew with ``python -m femoat.bearings.registry`` (a test checks that
+the committed file is what this list generates).
+
+A kind's index in :data:`KINDS` is its code in the loop's bearing rows (plan) and, offset by
+:data:`AXIS_CODE_START`, its material code on one axis (the isolator element of a 1D model), so
+the list is append-only: an index, once given, is kept.
+
+:func:`register` adds a kind for one process (a test's throwaway kind, a user's own bearing): it
+writes the dispatcher with that kind to a folder of its own and points numba's cache there too
+(numba keys a compiled loop on its own source file only, not on the dispatcher it inlines).
+"""
+
+import hashlib
+import importlib
+import importlib.util
+import os
+import sys
+from pathlib import Path
+
+KINDS = (
+    "femoat.bearings.friction_pendulum",
+)
+"""The bearing kinds' modules, in code order (append only)."""
+
+AXIS_CODE_START = 3
+"""The material code of kind 0 on one axis (:mod:`femoat.structure.materials.codes`: the codes
+below it are the story materials)."""
+
+KERNELS = {
+    # name in the dispatcher: (name in the kind's module, arguments after ``kind``, returns)
+    "bearing_axis_trial": ("axis_trial", "p, s, u, v", "(np.nan, np.nan, np.nan)"),
+    "bearing_axis_commit": ("axis_commit", "p, s, u, v", None),
+    "bearing_axis_energy": ("axis_energy", "p, s", "np.nan"),
+    "bearing_plan_trial": ("plan_trial", "p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c",
+                           None),
+    "bearing_plan_commit": ("plan_commit", "p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau", None),
+    "bearing_plan_energy": ("plan_energy", "p, s", "np.nan"),
+    "bearing_plan_branch": ("plan_branch", "p, s, ux, uy", "-1"),
+    "bearing_plan_turn_direction": ("plan_turn_direction", "s", "(0.0, 0.0)"),
+}
+"""The kernels every kind provides, and what the dispatcher returns for an unknown kind."""
+
+PYTHON_NAMES = ("KEY", "N_PARAMS", "N_STATE_AXIS", "N_STATE_PLAN", "AXIS_CLASS", "PLAN_CLASS")
+"""The names every kind provides on the Python side: its scenario key, its array widths and the
+dataclasses of its one-axis and plan faces (they may be one class)."""
+
+_DISPATCH = Path(__file__).with_name("dispatch.py")
+_kinds = list(KINDS)
+
+
+def kinds():
+    """The kinds' modules in code order (the committed ones and any :func:`register` added)."""
+    return tuple(_kinds)
+
+
+def module(kind):
+    """The module of bearing kind ``kind`` (its index)."""
+    return importlib.import_module(_kinds[kind])
+
+
+def kind_of(bearing):
+    """The kind index of ``bearing`` (a kind's one-axis or plan dataclass), or None if it is
+    not a registered bearing."""
+    for kind, name in enumerate(_kinds):
+        mod = importlib.import_module(name)
+        if type(bearing) in (mod.AXIS_CLASS, mod.PLAN_CLASS):
+            return kind
+    return None
+
+
+def axis_code(bearing):
+    """The material code of ``bearing`` on one axis (the isolator element of a 1D model)."""
+    kind = kind_of(bearing)
+    if kind is None:
+        raise ValueError(f"{type(bearing).__name__} is not a registered bearing kind "
+                         f"({', '.join(_kinds)}).")
+    return AXIS_CODE_START + kind
+
+
+def axis_classes():
+    """The one-axis dataclasses of every kind (what a 1D building takes as its isolator)."""
+    return tuple(importlib.import_module(name).AXIS_CLASS for name in _kinds)
+
+
+def plan_classes():
+    """The plan dataclasses of every kind (what a plan building takes as its isolator)."""
+    return tuple(importlib.import_module(name).PLAN_CLASS for name in _kinds)
+
+
+def by_key(key):
+    """The kind module whose scenario key is ``key`` ("fp", ...), or None."""
+    for name in _kinds:
+        mod = importlib.import_module(name)
+        if mod.KEY == key:
+            return mod
+    return None
+
+
+def keys():
+    """Every kind's scenario key, in code order."""
+    return tuple(importlib.import_module(name).KEY for name in _kinds)
+
+
+def widths():
+    """(params, one-axis state, plan state): the widest of every kind (the loop's arrays)."""
+    mods = [importlib.import_module(name) for name in _kinds]
+    return (max(m.N_PARAMS for m in mods), max(m.N_STATE_AXIS for m in mods),
+            max(m.N_STATE_PLAN for m in mods))
+
+
+def check_kind(name):
+    """Import kind module ``name`` and check it provides the contract; returns the module."""
+    mod = importlib.import_module(name)
+    missing = [k for k in (*PYTHON_NAMES, *(v[0] for v in KERNELS.values()))
+               if not hasattr(mod, k)]
+    if missing:
+        raise ValueError(f"bearing kind {name}: missing {', '.join(missing)}; a bearing kind "
+                         "provides every name femoat.bearings' docstring lists.")
+    return mod
+
+
+def generate(names=None):
+    """The dispatcher's source for the kinds ``names`` (default: the registered ones)."""
+    names = tuple(_kinds if names is None else names)
+    out = ['"""Generated by femoat.bearings.registry from its KINDS: do not edit; after changing the',
+           'list run ``python -m femoat.bearings.registry``.',
+           '',
+           "Each function calls the kernel of the bearing kind its first argument names (the kind's",
+           'index in the list), one ``if kind ==`` branch per kind (numba compiles each branch).',
+           '"""',
+           '',
+           'import numpy as np',
+           '',
+           'from femoat.bearings import registry as _registry']
+    for k, name in enumerate(names):
+        out.append(f"from {name} import (")
+        out += [f"    {v[0]} as _{v[0]}_{k}," for v in KERNELS.values()]
+        out.append(")")
+    out.append('from femoat.compilation.jit import njit')
+    listed = "".join(f"\n    {name!r}," for name in names)
+    out += ['', f"KINDS = ({listed}\n)", '"""The kinds this dispatcher was generated for."""', '',
+            '_registry.check_dispatcher(KINDS)']
+    for fn, (own, args, missing) in KERNELS.items():
+        out += ['', '', '@njit(cache=True)', f"def {fn}(kind, {args}):",
+                f'    """:func:`{own}` of bearing kind ``kind``."""']
+        for k in range(len(names)):
+            call = f"_{own}_{k}({args})"
+            out += [f"    if kind == {k}:", f"        return {call}" if missing else
+                    f"        {call}\n        return"]
+        if missing:
+            out.append(f"    return {missing}")
+    return "\n".join(out) + "\n"
+
+
+def write():
+    """Write the committed dispatcher from :data:`KINDS` (``python -m femoat.bearings.registry``)."""
+    for name in KINDS:
+        check_kind(name)
+    _atomic_write(_DISPATCH, generate(KINDS))
+    return _DISPATCH
+
+
+def check_dispatcher(dispatch_kinds):
+    """Raise unless the dispatcher was generated for this process's kinds."""
+    if tuple(dispatch_kinds) != tuple(_kinds):
+        raise RuntimeError(
+            f"femoat.bearings.dispatch was generated for {tuple(dispatch_kinds)} but the registry "
+            f"lists {tuple(_kinds)}: run `python -m femoat.bearings.registry` to write it anew.")
+
+
+def register(name, cache_dir=None):
+    """Add the bearing kind of module ``name`` for this process, before the solver is imported.
+
+    Writes a dispatcher with every registered kind and ``name`` into ``cache_dir`` (default: a
+    folder keyed by the kinds under ``~/.cache/femoat``), loads it as
+    :mod:`femoat.bearings.dispatch`, and points numba's on-disk cache there, so that the
+    compiled loop (which inlines the dispatcher) is compiled for these kinds and cached apart
+    from the loop of the committed kinds. Returns the new kind's index."""
+    if name in _kinds:
+        return _kinds.index(name)
+    solver = [m for m in ("femoat.bearings.dispatch", "femoat.integration.forces")
+              if m in sys.modules]
+    if solver:
+        raise RuntimeError(
+            f"register({name!r}) after the solver was imported ({', '.join(solver)}): the "
+            "compiled loop has already read the dispatcher. Register bearing kinds first, before "
+            "running a model (in a fresh process).")
+    check_kind(name)
+    names = (*_kinds, name)
+    source = generate(names)
+    digest = hashlib.sha256(source.encode()).hexdigest()[:16]
+    folder = Path(cache_dir) if cache_dir is not None else (
+        Path.home() / ".cache" / "femoat" / f"bearings-{digest}")
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"femoat_bearings_dispatch_{digest}.py"
+    if not path.exists() or path.read_text() != source:
+        _atomic_write(path, source)
+    _kinds.append(name)
+    _use_numba_cache(folder / "numba")
+    spec = importlib.util.spec_from_file_location("femoat.bearings.dispatch", path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["femoat.bearings.dispatch"] = mod
+    spec.loader.exec_module(mod)
+    return len(_kinds) - 1
+
+
+def _use_numba_cache(folder):
+    """Point numba's on-disk cache at ``folder`` for the kernels imported from now on."""
+    os.environ["NUMBA_CACHE_DIR"] = str(folder)
+    if "numba" in sys.modules:
+        from numba.core import config
+
+        config.CACHE_DIR = str(folder)
+
+
+def _atomic_write(path, text):
+    tmp = Path(f"{path}.tmp{os.getpid()}")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+if __name__ == "__main__":
+    print(f"wrote {write()}")
