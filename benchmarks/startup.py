@@ -45,7 +45,7 @@ class L(ev.Listener):
             top[s.name] = top.get(s.name, 0.0) + time.process_time() - s.t
         s.depth -= 1
 ev.register("numba:compile", L())
-from femoat.compilation.warmup import warm_up
+from femoat.startup.warmup import warm_up
 total = warm_up()
 t = time.process_time()
 from femoat.ground_motions.pair import fema_p695_pair
@@ -62,7 +62,7 @@ print(json.dumps({"total": total, "top": before, "plan_extra": plan,
 
 _WARM = r"""
 import json, time
-from femoat.compilation.warmup import warm_up
+from femoat.startup.warmup import warm_up
 from femoat.compilation.exports import EXPORTS
 from femoat.integration.solve import kernels
 cpu = warm_up()

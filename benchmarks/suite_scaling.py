@@ -68,7 +68,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=2, help="best of N per setting (default 2)")
     ap.add_argument("--keep", type=Path, default=None, help="keep the outputs in this folder")
     args = ap.parse_args()
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
     from femoat.suite import load_suite, load_table, run_suite
 
     warm_up()  # numba compiles or loads the kernels once, before the workers start

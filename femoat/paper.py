@@ -51,10 +51,10 @@ def run_paper_study(damping="published", quick=False, calibrate=False, integrato
 
     The solver's start-up (numba compilation or kernel loading) is paid and timed before the
     first run
-    (:func:`femoat.compilation.warmup.warm_up`) and kept as ``meta["compile_seconds"]`` of that run
+    (:func:`femoat.startup.warmup.warm_up`) and kept as ``meta["compile_seconds"]`` of that run
     (0.0 for the others), so that every run's ``cpu_seconds`` is solver time only.
     """
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
 
     motion = paper_motion(quick)
     integ = integrator or Integrator()

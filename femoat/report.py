@@ -25,7 +25,7 @@ SUMMARY_COLUMNS = [
 """Summary columns (key, unit, format). ``solver_seconds`` is the CPU time of the run's compiled
 loop; ``compile_seconds`` the start-up (numba compilation or kernel loading) paid before that run,
 measured on its own by
-:func:`femoat.compilation.warmup.warm_up`: non-zero only for a process's first run."""
+:func:`femoat.startup.warmup.warm_up`: non-zero only for a process's first run."""
 
 
 def summary_rows(runs):

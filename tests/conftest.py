@@ -152,7 +152,7 @@ def _parallel_controller(config):
 def pytest_configure(config):
     if _parallel_controller(config):
         config._femoat_compile = subprocess.Popen(
-            [sys.executable, "-c", "from femoat.compilation.warmup import warm_up; warm_up()"],
+            [sys.executable, "-c", "from femoat.startup.warmup import warm_up; warm_up()"],
             env={**os.environ, "PYTHONPATH": os.pathsep.join([str(_ROOT),
                                                               os.environ.get("PYTHONPATH", "")])},
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -15,8 +15,8 @@ LAYERS = [
     # 0 foundations: units, files, compiled-code plumbing, records
     ("femoat", "femoat.units", "femoat.checks", "femoat.atomic", "femoat.compilation",
      "femoat.dense_peaks", "femoat.ground_motions"),
-    # 1 constitutive laws: contact laws, structural materials
-    ("femoat.contact", "femoat.structure.materials"),
+    # 1 constitutive laws: contact laws, structural materials, isolation bearings
+    ("femoat.contact", "femoat.structure.materials", "femoat.bearings"),
     # 2 moat walls (FE models, reduction, presets)
     ("femoat.walls",),
     # 3 the building and its pounding model (in plan: femoat.plan)
@@ -25,7 +25,7 @@ LAYERS = [
     ("femoat.integration", "femoat.impact"),
     # 5 runs and what they produce; the warm-up; the OpenSees twin
     ("femoat.results", "femoat.plan.results", "femoat.collapse", "femoat.run",
-     "femoat.compilation.probe", "femoat.compilation.warmup",
+     "femoat.startup",
      "femoat.opensees"),
     # 6 figures and renderings (never imported by layers 0-5)
     ("femoat.plotting", "femoat.render"),

@@ -17,6 +17,7 @@ from femoat.plan import (
 )
 from femoat.structure.building import Building
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+from femoat.structure.materials.codes import BEARING
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 from femoat.walls import ModalWall, wall_preset
@@ -192,8 +193,11 @@ def test_pack_along_an_axis_is_the_1d_pack(axis, variant):
     one_els = range(len(one.el_code))
     if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
         assert one.el_roles[0].kind == ISOLATOR
-        np.testing.assert_array_equal(plan.bearing_P, one.el_P[0, :len(plan.bearing_P)])
-        np.testing.assert_array_equal(plan.bearing_dofs, model.layout().floor_dofs[0, :2])
+        # one bearing row: kind 0 (the friction pendulum), the 1D isolator's params and code
+        width = plan.bearing_P.shape[1]
+        np.testing.assert_array_equal(plan.bearing_P[0], one.el_P[0, :width])
+        assert one.el_code[0] == BEARING + plan.bearing_kind[0] and plan.bearing_kind[0] == 0
+        np.testing.assert_array_equal(plan.bearing_dofs[0], model.layout().floor_dofs[0, :2])
         one_els = range(1, len(one.el_code))
     else:
         assert plan.bearing_dofs.size == 0

@@ -48,7 +48,7 @@ def test_the_default_plan_file_packs_as_the_default_plan_model():
         a, b = getattr(ours, f.name), getattr(python, f.name)
         if isinstance(b, np.ndarray):
             assert a.dtype == b.dtype and np.array_equal(a, b), f.name
-    assert ours.c_names == ["+x", "-x", "+y", "-y"] and ours.bearing_P[0] == 33.0
+    assert ours.c_names == ["+x", "-x", "+y", "-y"] and ours.bearing_P[0, 0] == 33.0
 
 
 def test_per_side_tables_override_the_default_wall_in_the_packed_arrays():

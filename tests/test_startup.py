@@ -9,7 +9,7 @@ import json
 
 from conftest import _python_env, run_in
 
-from femoat.compilation.warmup import warm_up
+from femoat.startup.warmup import warm_up
 
 
 def test_importing_the_solver_does_not_import_numba(tmp_path):
@@ -22,7 +22,7 @@ def test_importing_the_solver_does_not_import_numba(tmp_path):
 
 _COUNTS = (
     "import json\n"
-    "from femoat.compilation.warmup import warm_up\n"
+    "from femoat.startup.warmup import warm_up\n"
     "from femoat.compilation.exports import EXPORTS\n"
     "from femoat.integration.solve import kernels\n"
     "warm_up()\n"

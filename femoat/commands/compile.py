@@ -15,7 +15,7 @@ def add_parser(sub):
 
 
 def run(args):
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
 
     cpu = warm_up()
     print(f"solver kernels compiled or loaded from numba's cache in {cpu:.1f} s of CPU")

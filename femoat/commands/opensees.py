@@ -57,7 +57,7 @@ def run(args):
     duration = sc.motion.duration + sc.extra_time
     if args.script is not None:
         write_opensees_script(sc.model, sc.motion, args.dt, args.script, duration=duration)
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
 
     startup = warm_up()  # femoat's start-up, reported apart from its solver time
     fm = run_model(sc.model, sc.motion, sc.integrator, duration=duration)

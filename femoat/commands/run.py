@@ -95,7 +95,7 @@ def run(args):
             print("\n".join(echo))
     elif sc.intensity is not None and not args.json:  # the factor, before the run
         print(f"motion: {sc.motion.name}, {sc.intensity.describe()}")
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
 
     startup = warm_up()  # compile / load the kernels outside the run's timed loop
     try:

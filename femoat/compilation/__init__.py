@@ -8,9 +8,9 @@
 * :mod:`~femoat.compilation.numba_cache`: drops numba's cached kernels compiled from other sources.
 * :mod:`~femoat.compilation.exports`: the solver's entry points, the namespace
   :func:`femoat.integration.solve.kernels` hands to the solver.
-* :mod:`~femoat.compilation.probe` and :mod:`~femoat.compilation.warmup`: a tiny run that
-  compiles (or loads from numba's on-disk cache) every entry point, and the start-up it costs,
-  paid before any timing.
+
+The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
+one layer above it: :mod:`femoat.startup`.
 
 numba's JIT with its on-disk cache is the only path: a process that finds the cache loads the
 kernels in about a second; there is no ahead-of-time module (``numba.pycc`` is deprecated

@@ -1,7 +1,7 @@
 """The building solver's compiled entry points: the kernels it calls from Python.
 
 One list, read by :func:`femoat.integration.solve.kernels` (the namespace handed to the
-solver) and by the warm-up (:mod:`~femoat.compilation.probe` calls every one). Modules are
+solver) and by the warm-up (:mod:`~femoat.startup.probe` calls every one). Modules are
 named, not imported, so that importing this list imports neither numba nor the solver.
 """
 

@@ -3,7 +3,9 @@
 :class:`~femoat.plan.PlanBuilding`.
 
 A key left out takes the default of what it sets: :class:`Building`'s fields, the story
-material's (every story gets the same material), :class:`FrictionPendulum`'s. Two defaults are
+material's (every story gets the same material), the isolator's (``[building.isolator] type``
+names its bearing kind, a key of :mod:`femoat.bearings.registry`: "fp" by default, the single
+:class:`FrictionPendulum`). Two defaults are
 the scenario's own: the isolator carries the building's total weight W [kip], and a
 deteriorating ("imk") story, which has no default capping deformations, gets
 :data:`IMK_CAPPING`.
@@ -17,6 +19,7 @@ base mat). The y stories may differ: ``story_model_y`` and ``[building.story_y]`
 
 import dataclasses
 
+from femoat.bearings import registry as bearing_registry
 from femoat.scenario.reading import (check_keys, field_default, field_defaults, flag, naming,
                                      number, numbers, numeric_table, one_of, subtable, text)
 from femoat.structure.building import DEFAULT_STORY_HEIGHT, Building
@@ -32,6 +35,9 @@ stories are the x ones; ``[building.story_y]`` overrides ``[building.story]`` ke
 
 STORY_MODELS = {"elastic": Elastic, "bilinear": Bilinear, "imk": IMKBilinear}
 """``story_model`` → the material of every story."""
+
+ISOLATOR_TYPE = "fp"
+"""``[building.isolator] type`` left out: the single friction pendulum (the paper's)."""
 
 IMK_CAPPING = {"theta_p": 1.0, "theta_pc": 3.0}
 """Plastic deformation before capping θp and post-capping deformation θpc [in] of an "imk"
@@ -50,7 +56,8 @@ def defaults():
     story = field_default(Building, "stories")[0]
     out["story_model"] = _model_name(story)
     out["story"] = {k: v for k, v in dataclasses.asdict(story).items() if v is not None}
-    out["isolator"] = field_defaults(FrictionPendulum, leave_out=("W",))
+    out["isolator"] = {"type": ISOLATOR_TYPE,
+                       **field_defaults(FrictionPendulum, leave_out=("W",))}
     out["plan"] = False  # the scenario's own: a 1D building unless the file says plan = true
     return out
 
@@ -71,6 +78,23 @@ def _story(model, story, where="[building.story]"):
     if model == "imk":
         story = {**IMK_CAPPING, **story}
     return numeric_table(story, STORY_MODELS[model], where)
+
+
+def _isolator(iso, weight):
+    """The isolator of ``[building.isolator]``: the bearing kind its ``type`` names (a key of
+    :mod:`femoat.bearings.registry`, default "fp"), on one axis, its parameters from the other
+    keys; a bearing with a weight W [kip] carries ``weight`` unless the table gives W."""
+    where = "[building.isolator]"
+    iso = dict(iso)
+    key = text(iso, "type", ISOLATOR_TYPE, where)
+    iso.pop("type", None)
+    kind = bearing_registry.by_key(key)
+    if kind is None:
+        raise ValueError(f"{where} type = {key!r}: use {one_of(bearing_registry.keys())}.")
+    cls = kind.AXIS_CLASS
+    if "W" in {f.name for f in dataclasses.fields(cls)}:
+        iso.setdefault("W", weight)
+    return numeric_table(iso, cls, where)
 
 
 def building_from_dict(d):
@@ -95,9 +119,7 @@ def building_from_dict(d):
     if model not in STORY_MODELS:
         raise ValueError(f"{where} story_model = {model!r}: use {one_of(STORY_MODELS)}.")
     material = _story(model, story)
-    iso = subtable(d, "isolator", where)
-    iso.setdefault("W", base + sum(floors))
-    isolator = numeric_table(iso, FrictionPendulum, "[building.isolator]")
+    isolator = _isolator(subtable(d, "isolator", where), base + sum(floors))
     ratio = number(d, "story_damping_ratio", default["story_damping_ratio"], where)
     period = number(d, "story_damping_period", default["story_damping_period"], where, "s")
     heights = d.get("story_heights")

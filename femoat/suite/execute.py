@@ -12,7 +12,7 @@
   Each finished task's rows are written at once, so an interruption (Ctrl-C, a killed worker
   or client) loses at most the tasks in flight.
 * The client compiles the solver's kernels into numba's on-disk cache before any worker starts
-  (once per install: :func:`femoat.compilation.warmup.warm_up`), so that the workers load them
+  (once per install: :func:`femoat.startup.warmup.warm_up`), so that the workers load them
   from the cache instead of each compiling them.
 * On a remote cluster every worker needs femoat installed and the suite's AT2 files at the same
   path (their samples are checked against the definition).
@@ -134,7 +134,7 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
 def _kernels(stream):
     """Compile the solver's kernels into numba's cache (or load them) in the client, before any
     worker starts; say so when it is the first time."""
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
 
     cpu = warm_up()
     if cpu > 10.0:
@@ -148,7 +148,7 @@ def _load_kernels():
     """In a worker: load (or compile) the solver's kernels; return how many signatures this
     process compiled itself rather than loading them from numba's cache."""
     from femoat.compilation.exports import EXPORTS
-    from femoat.compilation.warmup import warm_up
+    from femoat.startup.warmup import warm_up
     from femoat.integration.solve import kernels
 
     warm_up()

@@ -18,7 +18,7 @@ def allowed_keys():
     """{table path: allowed keys} of the model tables (from femoat.scenario and the materials)."""
     from femoat import scenario
     from femoat.scenario.building import STORY_MODELS
-    from femoat.structure.materials import FrictionPendulum
+    from femoat.bearings import registry
 
     known = {}
     for keys in (scenario.KEYS, scenario.PLAN_KEYS):
@@ -28,7 +28,8 @@ def allowed_keys():
     known["building.story"] = {f.name for m in STORY_MODELS.values()
                                for f in dataclasses.fields(m)} | {"k0"}
     known["building.story_y"] = known["building.story"]
-    known["building.isolator"] = {f.name for f in dataclasses.fields(FrictionPendulum)}
+    known["building.isolator"] = {"type"} | {  # every bearing kind's parameters
+        f.name for cls in registry.axis_classes() for f in dataclasses.fields(cls)}
     return known
 
 

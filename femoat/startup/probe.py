@@ -1,7 +1,7 @@
 """A tiny building run that makes every solver entry point compile (or load): the default
 building between two concrete walls with Hertzdamp contact, 4 in away, under 0.2 s of a 1 g sine
 (no contact needed: every entry point is called by every run).
-:mod:`~femoat.compilation.warmup` pays the start-up with it (``femoat compile``, the paper
+:mod:`~femoat.startup.warmup` pays the start-up with it (``femoat compile``, the paper
 study, a run and a suite's client before its workers start).
 """
 

@@ -23,7 +23,7 @@ def warm_up():
     """
     if _done:
         return 0.0
-    from femoat.compilation.probe import run_probe
+    from femoat.startup.probe import run_probe
 
     t0 = time.process_time()
     run_probe()  # the walls are 4 in away: no contact needed
