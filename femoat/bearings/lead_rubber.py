@@ -70,10 +70,10 @@ Recoverable energy: K_d·|u|²/2 + Q_d·u_y·|z|²/(2A), the hysteretic spring's
 its elastic stiffness Q_d·A/u_y (exact for β = γ).
 
 OpenSees twins (:func:`opensees_plan_element`, :func:`opensees_axis_material`): in 3D
-``elastomericBearingBoucWen`` with kInit = K_u, alpha1 = K_d/K_u, alpha2 = 0 and the same η,
-β, γ. Its documented argument ``qd`` ("characteristic strength") is used in the code as the
-force F_y = K_u·u_y on the elastic line (its strength is (1 − alpha1)·qd), so the twin passes
-qd = K_u·u_y. On one axis ``uniaxialMaterial BoucWen`` (z in displacement units, A0 = 1,
+``elastomericBearingBoucWen`` with kInit = K_u, qd = Q_d, alpha1 = K_d/K_u, alpha2 = 0 and the
+same η, β, γ (its u_y = qd/((1 − alpha1)·kInit) is this one). Older OpenSees sources (the 2012
+revision) read the ``qd`` slot as a yield force F_y and used (1 − alpha1)·F_y as the strength;
+openseespy 3.7 reads it as Q_d, as documented (the twin test checks the strength). On one axis ``uniaxialMaterial BoucWen`` (z in displacement units, A0 = 1,
 gamma = γ/u_y^η, beta = β/u_y^η, no degradation). Both take one backward-Euler step per
 increment (Newton on z): first-order accurate in the increment, converging to this bearing.
 ``LeadRubberX`` is not a twin: its biaxial rule is Park-Wen-Ang's with a sign per component,
@@ -634,14 +634,14 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag):
     """The openseespy calls, ``(function name, *args)`` tuples, of the 3D twin of ``bearing``
     between nodes ``i_node`` (ground) and ``j_node`` of a ``-ndm 3 -ndf 6`` model, shear in
     global x and y (the bearing's axis along global z): ``elastomericBearingBoucWen`` with
-    kInit = K_u, qd = K_u·u_y (used by OpenSees as F_y: its strength is (1 − alpha1)·qd = Q_d),
-    alpha1 = K_d/K_u, no nonlinear hardening, the same η, β, γ, and stiff elastic springs on the
-    other four components. Returns (commands, the next free material tag)."""
+    kInit = K_u, qd = Q_d, alpha1 = K_d/K_u, no nonlinear hardening (alpha2 = 0, mu unused), the
+    same η, β, γ, and stiff elastic springs on the other four components (the j node's vertical
+    displacement is held by the axial one). Returns (commands, the next free material tag)."""
     b = bearing
     cmds = [("uniaxialMaterial", "Elastic", mat_tag, AXIAL_STIFFNESS),
             # local x along global z, local y along global x: shear y, z = global x, y
-            ("element", "elastomericBearingBoucWen", ele_tag, i_node, j_node, b.K_u,
-             b.K_u * b.u_y, b.K_d / b.K_u, 0.0, 2.0, b.eta, b.beta, b.gamma,
+            ("element", "elastomericBearingBoucWen", ele_tag, i_node, j_node, b.K_u, b.Q_d,
+             b.K_d / b.K_u, 0.0, 2.0, b.eta, b.beta, b.gamma,
              "-P", mat_tag, "-T", mat_tag, "-My", mat_tag, "-Mz", mat_tag,
              "-orient", 0.0, 0.0, 1.0, 1.0, 0.0, 0.0)]
     return cmds, mat_tag + 1
