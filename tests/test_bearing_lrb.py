@@ -224,11 +224,15 @@ def test_loop_area_tends_to_the_bilinear_as_the_exponent_grows():
 def test_along_one_axis_it_is_the_1d_bearing(bearing, axis):
     # Written once: the one-axis kernels are the plan core with the y components zero, and a
     # motion along one axis keeps z on it; force and tangent along the axis are the 1D ones
-    # (measured: to the bit), nothing acts across it.
+    # (measured: to the bit), nothing acts across it. With velocities along the axis the step's
+    # path is straight: the chord, whatever tau.
     u, v = cyclic_path(np.random.default_rng(11 + axis))
-    plan_u = np.zeros((len(u), 2))
-    plan_u[:, axis] = u
+    plan_u, plan_v = np.zeros((len(u), 2)), np.zeros((len(u), 2))
+    plan_u[:, axis], plan_v[:, axis] = u, v
     f, k, z = drive_plan(bearing, plan_u)
+    f_path, k_path = drive_path(bearing, plan_u, plan_v, 0.01)  # a straight path: the chord
+    np.testing.assert_array_equal(f_path, f)
+    np.testing.assert_array_equal(k_path, k)
     f1, k1, c1 = drive_axis(bearing, u, v)
     np.testing.assert_allclose(f[:, axis], f1, rtol=1e-12, atol=1e-12 * bearing.Q_d)
     np.testing.assert_allclose(k[:, axis, axis], k1, rtol=1e-12)
@@ -351,6 +355,78 @@ def test_steady_circular_orbit(bearing):
     np.testing.assert_allclose(lrb.plan_turn_direction(s), z_last[-1] / np.linalg.norm(z_last[-1]),
                                rtol=1e-12)
     assert lrb.plan_branch(p, s, 0.3, -0.2) == 0
+
+
+def circle_with_velocities(r, n, cycles, dt):
+    """:func:`circle` with its velocities [in/s] (one turn in n·dt seconds; the ramp's zero)."""
+    u = circle(r, n, cycles)
+    omega = 2.0 * np.pi / (n * dt)
+    v = np.column_stack([-u[:, 1], u[:, 0]]) * omega
+    v[: n // 4] = 0.0
+    return u, v
+
+
+def drive_path(bearing, u, v, dt):
+    """Trial then commit along u with velocities v, each step's path its cubic Hermite (the
+    solver's): forces and the trials' ∂f/∂u."""
+    p, s = bearing.params(), bearing.initial_state_plan()
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    forces, tangents = np.zeros_like(u), np.zeros((len(u), 2, 2))
+    u0, v0 = np.zeros(2), np.zeros(2)
+    for i in range(len(u)):
+        args = (u0[0], u0[1], v0[0], v0[1], u[i, 0], u[i, 1], v[i, 0], v[i, 1], dt)
+        lrb.plan_trial(p, s, *args, f, k, c)
+        lrb.plan_commit(p, s, *args)
+        forces[i], tangents[i] = f, k
+        u0, v0 = u[i], v[i]
+    return forces, tangents
+
+
+@pytest.mark.parametrize("bearing", [DEFAULT, QUADRATIC], ids=["default", "eta2"])
+def test_curved_steps_follow_the_path(bearing):
+    # The steady circle (closed form above) driven in 60 steps per turn (0.31 in each, 0.64
+    # u_y): along chords the orbit is a polygon and |f| errs by O(step²) (measured 2.2e-3);
+    # along each step's cubic Hermite path (the circle's own velocities, cut into pieces of at
+    # most 0.05 u_y) the error is the pieces' (measured 1.4e-5), whatever the step: 1.1e-5 at
+    # 120 steps per turn.
+    r, n, dt = 3.0, 60, 0.01
+    rho = bearing.z_cap
+    phi = math.asin(rho * bearing.u_y / (lrb.A * r))
+    steady = math.hypot(bearing.K_d * r + bearing.Q_d * rho * math.sin(phi),
+                        bearing.Q_d * rho * math.cos(phi))
+    u, v = circle_with_velocities(r, n, 3, dt)
+    along_path, _ = drive_path(bearing, u, v, dt)
+    chords, _ = drive_path(bearing, u, v, 0.0)  # tau = 0: the chord
+    path_error = np.max(np.abs(np.linalg.norm(along_path[-n:], axis=1) / steady - 1.0))
+    chord_error = np.max(np.abs(np.linalg.norm(chords[-n:], axis=1) / steady - 1.0))
+    assert path_error < 3e-5 and chord_error > 50.0 * path_error
+
+
+def test_tangent_along_a_curved_path_matches_central_differences():
+    # The trial's derivative in its end displacement, the end velocity and tau held: each piece
+    # of the Hermite path moves with the end point by its Hermite weight 3θ² − 2θ³.
+    b = DEFAULT
+    p = b.params()
+    rng = np.random.default_rng(4)
+    worst = 0.0
+    for _ in range(20):
+        s = b.initial_state_plan()
+        r, th = rng.uniform(0.0, 1.0) ** 0.3, rng.uniform(0.0, 2.0 * np.pi)
+        s[2:4] = r * np.cos(th), r * np.sin(th)
+        v0, v1, dt = rng.uniform(-30.0, 30.0, 2), rng.uniform(-30.0, 30.0, 2), 0.01
+        end = 0.5 * dt * (v0 + v1) + rng.uniform(-0.02, 0.02, 2)
+
+        def trial(x, y, s=s, v0=v0, v1=v1, dt=dt):
+            f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+            lrb.plan_trial(p, s, 0.0, 0.0, v0[0], v0[1], x, y, v1[0], v1[1], dt, f, k, c)
+            return f, k
+
+        _, k = trial(*end)
+        h = 1e-6 * b.u_y
+        fd = np.column_stack([(trial(*(end + h * e))[0] - trial(*(end - h * e))[0]) / (2 * h)
+                              for e in np.eye(2)])
+        worst = max(worst, np.max(np.abs(k - fd)) / np.max(np.abs(k)))
+    assert worst < 1e-6
 
 
 def test_turning_direction_only_where_a_reversal_is_a_kink():

@@ -26,12 +26,17 @@ bilinear loop of strength Q_d and yield displacement u_y.
 In plan the nonlinear term is along z, so it changes |z| only: z's direction turns towards the
 motion's at the elastic rate A/u_y, and at most the cap is reached (never crossed).
 
-Integration (the rule is rate-independent: a trial goes along the chord from the committed
-displacement to the trial one; the path arguments and ``tau`` are not used). Along a straight
-chord Δu the component a = z·Δu/|Δu| increases monotonically (for β > 0, γ > −β), so the chord
-has at most two phases: unloading (a < 0, β·sgn + γ = γ − β) up to the point where a = 0, then
-loading (β + γ). Each phase is a flow with a constant coefficient c, integrated exactly where a
-closed form exists:
+Integration. The rule is rate-independent: z depends on the path of u, not on time. A trial
+integrates z along the step's path from the committed state: the chord from the committed
+displacement when the path is straight (on one axis, at tau = 0, or when both end velocities lie
+along the chord), else the step's cubic Hermite path (its end displacements and velocities, tau
+only scaling the velocities into a path) cut into straight pieces at most :data:`PIECE`·u_y long.
+(On a curved path the chord alone errs by O(step²) in the force over a few u_y of travel:
+measured 2e-3 of the force at 0.3 in steps on a 3 in circle, 1e-5 with the pieces.) Along a
+straight segment Δu the component a = z·Δu/|Δu| increases monotonically (for β > 0, γ > −β), so
+it has at most two phases: unloading (a < 0, β·sgn + γ = γ − β) up to the point where a = 0,
+then loading (β + γ). Each phase is a flow with a constant coefficient c, integrated exactly
+where a closed form exists:
 
 * c = 0 (unloading with β = γ, the default): z + A·Δu/u_y, any η;
 * η = 2: along the chord's direction d, a = z·d obeys a Riccati equation and the part b across
@@ -45,17 +50,20 @@ otherwise by classical Runge-Kutta (order 4) in the chord's fraction, each subst
 :data:`STEP`·u_y/max(1, η/cap) long (the law's stiffness near the cap grows as η/u_y) and at most
 :data:`GRADE`·|z|·u_y (near z = 0 the law for η < 2 is not smooth: z turns into the motion over
 a length |z|·u_y, e.g. when loading starts after an unloading that nearly reversed z); the end of
-unloading is then found by Newton's method on the same integrator. Measured against converged
-references (``benchmarks/lrb_bearing.py``): worst error in z about 1e-8 over random plan chords
-for η = 1, below 1e-9 for η >= 2, three orders below the solver's default rtol; the result is a
-smooth function of the trial but for jumps of that size where the substeps change.
+unloading is then found by Newton's method on the same integrator. Against converged references
+(``benchmarks/lrb_bearing.py``) the error in z is a few 1e-8 at worst for η = 1 and smaller for
+η >= 2, three orders below the solver's default rtol; the result is a smooth function of the
+trial but for jumps of that size where the substeps change. STEP = 0.05 is where the worst error
+stops being set by the rule near z = 0 and falls at the method's order (the benchmark's table).
 
-Tangent ∂f/∂u = K_d·I + Q_d·∂z/∂u, consistent: the derivative of the update itself (the closed
-forms differentiated, the Runge-Kutta stages carried with their derivative), the substep fractions
-held fixed (the end of unloading moves with the trial, but the flow is continuous across it, so
-its derivative does not enter). At a zero increment the derivative depends on the direction of
-the next increment (the reversal kink); the trial velocity chooses it (loading if z·v > 0, else
-unloading). ∂f/∂v = 0.
+Tangent ∂f/∂u = K_d·I + Q_d·∂z/∂u, consistent: the derivative of the update itself with respect
+to the end displacement (the closed forms differentiated, the Runge-Kutta stages carried with
+their derivative, the pieces of a path by the Hermite weight of the end point), the substep and
+piece fractions held fixed (the end of unloading moves with the trial, but the flow is continuous
+across it, so its derivative does not enter). At a zero increment the derivative depends on the
+direction of the next increment (the reversal kink); the trial velocity chooses it (loading if
+z·v > 0, else unloading). ∂f/∂v = 0: the path's shape depends on the end velocity, by a weight
+of order tau, which the tangent leaves out.
 
 Branches: the force is continuously differentiable along any path except where the path reverses
 (z·du changes sign with z != 0, the loading and unloading coefficients differ by 2β|z|^η); at the
@@ -73,8 +81,9 @@ OpenSees twins (:func:`opensees_plan_element`, :func:`opensees_axis_material`): 
 ``elastomericBearingBoucWen`` with kInit = K_u, qd = Q_d, alpha1 = K_d/K_u, alpha2 = 0 and the
 same η, β, γ (its u_y = qd/((1 − alpha1)·kInit) is this one). Older OpenSees sources (the 2012
 revision) read the ``qd`` slot as a yield force F_y and used (1 − alpha1)·F_y as the strength;
-openseespy 3.7 reads it as Q_d, as documented (the twin test checks the strength). On one axis ``uniaxialMaterial BoucWen`` (z in displacement units, A0 = 1,
-gamma = γ/u_y^η, beta = β/u_y^η, no degradation). Both take one backward-Euler step per
+openseespy 3.7 reads it as Q_d, as documented (the twin test checks the strength). On one axis
+``uniaxialMaterial BoucWen`` (z in displacement units, A0 = 1, gamma = γ/u_y^η, beta = β/u_y^η,
+no degradation). Both take one backward-Euler step per
 increment (Newton on z): first-order accurate in the increment, converging to this bearing.
 ``LeadRubberX`` is not a twin: its biaxial rule is Park-Wen-Ang's with a sign per component,
 sgn(z_x·du_x) and sgn(z_y·du_y) (not isotropic), with η = 2, β = 0.1, γ = 0.9 hard-coded.
@@ -124,8 +133,15 @@ z = 0, where z turns into the motion over a length |z|·u_y."""
 GRADE_LEVELS = 20
 """A substep is at least 2^-GRADE_LEVELS of STEP·u_y/rate long."""
 
-MAX_SUBSTEPS = 4096
-"""The most Runge-Kutta substeps per phase of a chord (a chord of thousands of u_y)."""
+PIECE = 0.05
+"""A curved step's path is cut into straight pieces at most PIECE·u_y long (module docstring)."""
+
+MAX_PIECES = 256
+"""The most pieces a step's path is cut into."""
+
+MAX_SUBSTEPS = 2 ** 20
+"""A guard against a runaway loop: the most Runge-Kutta substeps per phase of a chord (a chord
+of 5e4·u_y/max(1, η/cap), far beyond any step)."""
 
 TURN_RATIO = 0.5
 """A reversal whose tangent differs by more than this fraction is a turning point for the solver
@@ -137,23 +153,23 @@ TURN_RATIO = 0.5
 
 @njit(cache=True)
 def _hyper(q):
-    """C = cosh(√q), S = sinh(√q)/√q, G = (C − 1)/q (cos, sin for q < 0: analytic through 0) and
-    dS/dq, dG/dq (dC/dq = S/2)."""
+    """With C = cosh(√q), S = sinh(√q)/√q, G = (C − 1)/q (cos, sin for q < 0: analytic through
+    0): 1/C, S/C, G/C, (dS/dq)/C, (dG/dq)/C (dC/dq = S/2), bounded for any q >= 0."""
     if abs(q) < 1e-2:  # Taylor series: truncation below 1e-15
         big_c = 1.0 + q * (0.5 + q * (1.0 / 24.0 + q * (1.0 / 720.0 + q / 40320.0)))
         s = 1.0 + q * (1.0 / 6.0 + q * (1.0 / 120.0 + q * (1.0 / 5040.0 + q / 362880.0)))
         g = 0.5 + q * (1.0 / 24.0 + q * (1.0 / 720.0 + q * (1.0 / 40320.0 + q / 3628800.0)))
         ds = 1.0 / 6.0 + q * (1.0 / 60.0 + q * (1.0 / 1680.0 + q / 90720.0))
         dg = 1.0 / 24.0 + q * (1.0 / 360.0 + q * (1.0 / 13440.0 + q / 907200.0))
-        return big_c, s, g, ds, dg
+        return 1.0 / big_c, s / big_c, g / big_c, ds / big_c, dg / big_c
     if q > 0.0:
         x = np.sqrt(q)
-        big_c, s = np.cosh(x), np.sinh(x) / x
-    else:
+        ic, sc = 1.0 / np.cosh(x), np.tanh(x) / x
+    else:  # only while unloading with β > γ, before the end of unloading: √−q < π/2
         x = np.sqrt(-q)
-        big_c, s = np.cos(x), np.sin(x) / x
-    g = (big_c - 1.0) / q
-    return big_c, s, g, (big_c - s) / (2.0 * q), (0.5 * s - g) / q
+        ic, sc = 1.0 / np.cos(x), np.tan(x) / x
+    gc = (1.0 - ic) / q
+    return ic, sc, gc, (1.0 - sc) / (2.0 * q), (0.5 * sc - gc) / q
 
 
 @njit(cache=True)
@@ -194,38 +210,40 @@ def _phi(c, eta, rho):
 
 
 @njit(cache=True)
-def _linear_piece(yd, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
-    """The fraction ``w`` of the chord (dx, dy) with c = 0: z + A·w·Δu/u_y, exactly."""
-    g = w * A / yd
-    return zx + g * dx, zy + g * dy, mxx + g, mxy, myx, myy + g
+def _linear_piece(yd, zx, zy, mxx, mxy, myx, myy, dx, dy, frac, w):
+    """The fraction ``frac`` of the segment (dx, dy) with c = 0: z + A·frac·Δu/u_y, exactly.
+    M = ∂z/∂u (the trial's end displacement), the segment being w·I of it (every piece below)."""
+    g = frac * A / yd
+    return zx + g * dx, zy + g * dy, mxx + w * g, mxy, myx, myy + w * g
 
 
 @njit(cache=True)
-def _mobius_piece(c, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
-    """The fraction ``w`` of the chord (dx, dy) for η = 2, exactly (module docstring), with its
+def _mobius_piece(c, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, frac, w):
+    """The fraction ``frac`` of the segment (dx, dy) for η = 2, exactly (module docstring), with its
     derivatives: z_1 = N/D, N = z_0 + (k·G·p_0 + (A/u_y)·S)·Δp, D = C + (c/u_y)·S·p_0,
-    p_0 = z_0·Δp, q = k·|Δp|², k = A·c/u_y²."""
-    px, py = w * dx, w * dy
+    p_0 = z_0·Δp, q = k·|Δp|², k = A·c/u_y² (:func:`_hyper`), N and D divided by C."""
+    px, py = frac * dx, frac * dy
     kq = A * c / (yd * yd)
-    big_c, s, g, ds, dg = _hyper(kq * (px * px + py * py))
+    ic, sc, gc, dsc, dgc = _hyper(kq * (px * px + py * py))
     p0 = zx * px + zy * py
     e = A / yd
-    lam = kq * g * p0 + e * s
-    den = big_c + (c / yd) * s * p0
-    z1x = (zx + lam * px) / den
-    z1y = (zy + lam * py) / den
-    # ∂z1/∂z0 = (I + k·G·Δp Δpᵀ − z1·(c/u_y)·S·Δpᵀ)/D
-    r = kq * g
-    h = (c / yd) * s
-    jxx = (1.0 + r * px * px - z1x * h * px) / den
+    w = w * frac  # this piece's share of ∂Δu/∂u
+    h = (c / yd) * sc
+    lam = kq * gc * p0 + e * sc
+    den = 1.0 + h * p0
+    z1x = (ic * zx + lam * px) / den
+    z1y = (ic * zy + lam * py) / den
+    # ∂z1/∂z0 = (I/C + k·(G/C)·Δp Δpᵀ − z1·h·Δpᵀ)/D'
+    r = kq * gc
+    jxx = (ic + r * px * px - z1x * h * px) / den
     jxy = (r * px * py - z1x * h * py) / den
     jyx = (r * py * px - z1y * h * px) / den
-    jyy = (1.0 + r * py * py - z1y * h * py) / den
-    # ∂N/∂Δp = λ·I + Δp·(k·G·z0 + 2k·(k·G'·p0 + e·S')·Δp)ᵀ
-    # ∂D/∂Δp = (k·S + 2k·(c/u_y)·S'·p0)·Δpᵀ + (c/u_y)·S·z0ᵀ
-    t = 2.0 * kq * (kq * dg * p0 + e * ds)
+    jyy = (ic + r * py * py - z1y * h * py) / den
+    # (∂N/∂Δp)/C = λ'·I + Δp·(k·(G/C)·z0 + 2k·(k·G'/C·p0 + e·S'/C)·Δp)ᵀ
+    # (∂D/∂Δp)/C = (k·S/C + 2k·(c/u_y)·(S'/C)·p0)·Δpᵀ + h·z0ᵀ
+    t = 2.0 * kq * (kq * dgc * p0 + e * dsc)
     nx, ny = r * zx + t * px, r * zy + t * py
-    m = kq * s + 2.0 * kq * (c / yd) * ds * p0
+    m = kq * sc + 2.0 * kq * (c / yd) * dsc * p0
     qx, qy = m * px + h * zx, m * py + h * zy
     kxx = (lam + px * nx - z1x * qx) / den
     kxy = (px * ny - z1x * qy) / den
@@ -237,12 +255,13 @@ def _mobius_piece(c, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
 
 
 @njit(cache=True)
-def _line_piece(kappa, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
-    """The fraction ``w`` of the chord (dx, dy) for η = 1 with z along the chord, exactly:
+def _line_piece(kappa, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, frac, w):
+    """The fraction ``frac`` of the segment (dx, dy) for η = 1 with z along the chord, exactly:
     u_y·da/ds = A − κ·a, κ = c·sgn(a) on this phase. Derivatives: e^(−x)·I for z0; for the
     chord (A − κ·a_1)/u_y along it, (A/u_y)·E(x) across it (z's perpendicular part obeys
     u_y·db/ds = A·dΔu_⊥/ds − κ·b there)."""
-    px, py = w * dx, w * dy
+    px, py = frac * dx, frac * dy
+    w = w * frac
     lp = np.sqrt(px * px + py * py)
     ex, ey = px / lp, py / lp
     a0 = zx * ex + zy * ey
@@ -260,13 +279,13 @@ def _line_piece(kappa, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
 
 
 @njit(cache=True)
-def _rates(c, eta, yd, zx, zy, dx, dy, mxx, mxy, myx, myy):
-    """dz/dσ along the whole chord (dx, dy) (σ its fraction) and its derivative ∂g/∂z·M + ∂g/∂Δu:
-    g = (A·Δu − φ·(z·Δu)·z)/u_y, φ = c·|z|^(η−2)."""
+def _rates(c, eta, yd, zx, zy, dx, dy, mxx, mxy, myx, myy, w):
+    """dz/dσ along the whole segment (dx, dy) (σ its fraction) and its derivative
+    ∂g/∂z·M + w·∂g/∂Δu: g = (A·Δu − φ·(z·Δu)·z)/u_y, φ = c·|z|^(η−2)."""
     rho2 = zx * zx + zy * zy
     e = A / yd
     if rho2 == 0.0:
-        return e * dx, e * dy, e, 0.0, 0.0, e
+        return e * dx, e * dy, mxx + w * e, mxy, myx, myy + w * e
     phi = _phi(c, eta, np.sqrt(rho2)) / yd
     p = zx * dx + zy * dy
     gx = e * dx - phi * p * zx
@@ -276,22 +295,22 @@ def _rates(c, eta, yd, zx, zy, dx, dy, mxx, mxy, myx, myy):
     gxy = -phi * (zx * dy + t * zx * zy)
     gyx = -phi * (zy * dx + t * zy * zx)
     gyy = -phi * (p + zy * dy + t * zy * zy)
-    qxx, qxy, qyy = e - phi * zx * zx, -phi * zx * zy, e - phi * zy * zy  # ∂g/∂Δu
+    qxx, qxy, qyy = w * (e - phi * zx * zx), -w * phi * zx * zy, w * (e - phi * zy * zy)
     return (gx, gy, gxx * mxx + gxy * myx + qxx, gxx * mxy + gxy * myy + qxy,
             gyx * mxx + gyy * myx + qxy, gyx * mxy + gyy * myy + qyy)
 
 
 @njit(cache=True)
-def _rk4(c, eta, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, h):
-    """One classical Runge-Kutta substep of fraction ``h`` of the chord, z with M."""
-    k1 = _rates(c, eta, yd, zx, zy, dx, dy, mxx, mxy, myx, myy)
+def _rk4(c, eta, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, h, w):
+    """One classical Runge-Kutta substep of fraction ``h`` of the segment, z with M."""
+    k1 = _rates(c, eta, yd, zx, zy, dx, dy, mxx, mxy, myx, myy, w)
     b = 0.5 * h
     k2 = _rates(c, eta, yd, zx + b * k1[0], zy + b * k1[1], dx, dy, mxx + b * k1[2],
-                mxy + b * k1[3], myx + b * k1[4], myy + b * k1[5])
+                mxy + b * k1[3], myx + b * k1[4], myy + b * k1[5], w)
     k3 = _rates(c, eta, yd, zx + b * k2[0], zy + b * k2[1], dx, dy, mxx + b * k2[2],
-                mxy + b * k2[3], myx + b * k2[4], myy + b * k2[5])
+                mxy + b * k2[3], myx + b * k2[4], myy + b * k2[5], w)
     k4 = _rates(c, eta, yd, zx + h * k3[0], zy + h * k3[1], dx, dy, mxx + h * k3[2],
-                mxy + h * k3[3], myx + h * k3[4], myy + h * k3[5])
+                mxy + h * k3[3], myx + h * k3[4], myy + h * k3[5], w)
     s = h / 6.0
     return (zx + s * (k1[0] + 2.0 * (k2[0] + k3[0]) + k4[0]),
             zy + s * (k1[1] + 2.0 * (k2[1] + k3[1]) + k4[1]),
@@ -302,8 +321,8 @@ def _rk4(c, eta, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, h):
 
 
 @njit(cache=True)
-def _rk_piece(c, eta, yd, rate, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1):
-    """The chord (dx, dy) from fraction f0 to f1 by Runge-Kutta, each substep at most
+def _rk_piece(c, eta, yd, rate, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1, w):
+    """The segment (dx, dy) from fraction f0 to f1 by Runge-Kutta, each substep at most
     STEP·u_y/rate and GRADE·|z|·u_y long (module docstring)."""
     length = np.sqrt(dx * dx + dy * dy)
     hmax = STEP * yd / (rate * length)
@@ -316,11 +335,11 @@ def _rk_piece(c, eta, yd, rate, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1):
         rest = f1 - sigma
         if rest <= 1.5 * h:  # the last substep, or the last two halves of the rest
             h = rest if rest <= h else 0.5 * rest
-        z = _rk4(c, eta, yd, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy, h)
+        z = _rk4(c, eta, yd, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy, h, w)
         if h == rest:
             return z
         sigma += h
-    return _rk4(c, eta, yd, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy, f1 - sigma)
+    return _rk4(c, eta, yd, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy, f1 - sigma, w)
 
 
 @njit(cache=True)
@@ -331,22 +350,23 @@ def _rate(p):
 
 
 @njit(cache=True)
-def _piece(p, c, sign, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1):
-    """The chord (dx, dy) from fraction f0 to f1 with the coefficient c (sgn(a) = ``sign`` on it),
-    by the exact form that applies, else Runge-Kutta."""
+def _piece(p, c, sign, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1, w):
+    """The segment (dx, dy) from fraction f0 to f1 with the coefficient c (sgn(a) = ``sign`` on
+    it), by the exact form that applies, else Runge-Kutta; M carried (the segment is w·I of
+    ∂Δu/∂u)."""
     eta, yd = p[_ETA], p[_UY]
     if c == 0.0:
-        return _linear_piece(yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0)
+        return _linear_piece(yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0, w)
     if eta == 2.0:
-        return _mobius_piece(c, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0)
+        return _mobius_piece(c, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0, w)
     if eta == 1.0 and one_d:
-        return _line_piece(c * sign, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0)
-    return _rk_piece(c, eta, yd, _rate(p), zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1)
+        return _line_piece(c * sign, yd, zx, zy, mxx, mxy, myx, myy, dx, dy, f1 - f0, w)
+    return _rk_piece(c, eta, yd, _rate(p), zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1, w)
 
 
 @njit(cache=True)
 def _unloading_end(p, c, one_d, zx, zy, dx, dy):
-    """The fraction of the chord (dx, dy) at which z·Δu reaches 0 from z·Δu < 0 (the end of
+    """The fraction of the segment (dx, dy) at which z·Δu reaches 0 from z·Δu < 0 (the end of
     unloading, c = γ − β on the way), 2 if it does not within the chord."""
     eta, yd = p[_ETA], p[_UY]
     length = np.sqrt(dx * dx + dy * dy)
@@ -357,19 +377,19 @@ def _unloading_end(p, c, one_d, zx, zy, dx, dy):
         return -a0 * (yd / A) * _atanc(c * a0 * a0 / A) / length
     if eta == 1.0 and one_d:  # u_y·da/ds = A + c·a
         return -a0 * (yd / A) * _log1pc(c * a0 / A) / length
-    end = _piece(p, c, -1.0, one_d, zx, zy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, 1.0)
+    end = _piece(p, c, -1.0, one_d, zx, zy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, 1.0, 0.0)
     if end[0] * dx + end[1] * dy <= 0.0:
         return 2.0
     lo, hi = 0.0, 1.0  # Newton's method on a(f), kept inside the bracket
     f = min(0.5, -a0 * yd / (A * length))
     for _ in range(60):
-        z = _piece(p, c, -1.0, one_d, zx, zy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, f)
+        z = _piece(p, c, -1.0, one_d, zx, zy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, f, 0.0)
         val = z[0] * dx + z[1] * dy
         if val < 0.0:
             lo = f
         else:
             hi = f
-        g = _rates(c, eta, yd, z[0], z[1], dx, dy, 0.0, 0.0, 0.0, 0.0)
+        g = _rates(c, eta, yd, z[0], z[1], dx, dy, 0.0, 0.0, 0.0, 0.0, 0.0)
         slope = g[0] * dx + g[1] * dy
         new = f - val / slope if slope > 0.0 else 0.5 * (lo + hi)
         if not lo < new < hi:
@@ -381,41 +401,74 @@ def _unloading_end(p, c, one_d, zx, zy, dx, dy):
 
 
 @njit(cache=True)
-def _z_chord(p, ucx, ucy, zcx, zcy, ux, uy, vx, vy):
-    """(z_x, z_y, ∂z_x/∂u_x, ∂z_x/∂u_y, ∂z_y/∂u_x, ∂z_y/∂u_y) at the trial (ux, uy) [in] along
-    the chord from the committed (ucx, ucy), z_c; the velocity (vx, vy) only chooses the
-    tangent of a zero increment (module docstring)."""
-    yd = p[_UY]
+def _segment(p, zx, zy, mxx, mxy, myx, myy, dx, dy, w):
+    """(z, M) at the end of the straight segment (dx, dy) [in] from z, M: its unloading phase
+    (if z·Δu < 0) up to its end, then its loading phase (module docstring)."""
     c_load = p[_BETA] + p[_GAMMA]
     c_unload = p[_GAMMA] - p[_BETA]
+    one_d = zx * dy - zy * dx == 0.0
+    if zx * dx + zy * dy < 0.0:
+        end = _unloading_end(p, c_unload, one_d, zx, zy, dx, dy)
+        if end >= 1.0:
+            return _piece(p, c_unload, -1.0, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, 0.0, 1.0,
+                          w)
+        z = _piece(p, c_unload, -1.0, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, 0.0, end, w)
+        return _piece(p, c_load, 1.0, one_d, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy, end,
+                      1.0, w)
+    return _piece(p, c_load, 1.0, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, 0.0, 1.0, w)
+
+
+@njit(cache=True)
+def _z_path(p, ucx, ucy, zcx, zcy, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
+    """(z_x, z_y, ∂z_x/∂u_x, ∂z_x/∂u_y, ∂z_y/∂u_x, ∂z_y/∂u_y) at the end (ux, uy) [in] of a step
+    of duration ``tau`` [s] from the committed (ucx, ucy), z_c with start velocity (v0x, v0y) and
+    end velocity (vx, vy) [in/s]: along the chord if the path is straight (tau = 0, or both
+    velocities along the chord), else along the step's cubic Hermite path cut into pieces at
+    most PIECE·u_y long (module docstring). At a zero increment the velocity chooses the
+    tangent."""
+    yd = p[_UY]
     dx, dy = ux - ucx, uy - ucy
     if dx == 0.0 and dy == 0.0:
         rho2 = zcx * zcx + zcy * zcy
         e = A / yd
         if rho2 == 0.0:
             return zcx, zcy, e, 0.0, 0.0, e
-        c = c_load if zcx * vx + zcy * vy > 0.0 else c_unload
+        c = p[_BETA] + p[_GAMMA] if zcx * vx + zcy * vy > 0.0 else p[_GAMMA] - p[_BETA]
         phi = _phi(c, p[_ETA], np.sqrt(rho2)) / yd
         return (zcx, zcy, e - phi * zcx * zcx, -phi * zcx * zcy, -phi * zcy * zcx,
                 e - phi * zcy * zcy)
-    one_d = zcx * dy - zcy * dx == 0.0
-    if zcx * dx + zcy * dy < 0.0:
-        end = _unloading_end(p, c_unload, one_d, zcx, zcy, dx, dy)
-        if end >= 1.0:
-            return _piece(p, c_unload, -1.0, one_d, zcx, zcy, 0.0, 0.0, 0.0, 0.0, dx, dy,
-                          0.0, 1.0)
-        z = _piece(p, c_unload, -1.0, one_d, zcx, zcy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, end)
-        return _piece(p, c_load, 1.0, one_d, z[0], z[1], z[2], z[3], z[4], z[5], dx, dy,
-                      end, 1.0)
-    return _piece(p, c_load, 1.0, one_d, zcx, zcy, 0.0, 0.0, 0.0, 0.0, dx, dy, 0.0, 1.0)
+    if tau <= 0.0 or (dx * v0y - dy * v0x == 0.0 and dx * vy - dy * vx == 0.0):
+        return _segment(p, zcx, zcy, 0.0, 0.0, 0.0, 0.0, dx, dy, 1.0)
+    length = max(np.sqrt(dx * dx + dy * dy),
+                 0.5 * tau * (np.sqrt(v0x * v0x + v0y * v0y) + np.sqrt(vx * vx + vy * vy)))
+    pieces = min(MAX_PIECES, max(1, int(np.ceil(length / (PIECE * yd)))))
+    z = (zcx, zcy, 0.0, 0.0, 0.0, 0.0)
+    px, py, h_prev = ucx, ucy, 0.0
+    for k in range(1, pieces + 1):
+        th = k / pieces
+        t2 = th * th
+        t3 = t2 * th
+        h01 = 3.0 * t2 - 2.0 * t3  # ∂q/∂u of the Hermite point q(θ)
+        if k == pieces:
+            qx, qy = ux, uy
+        else:
+            h00, h10, h11 = 2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + th, t3 - t2
+            qx = h00 * u0x + h10 * tau * v0x + h01 * ux + h11 * tau * vx
+            qy = h00 * u0y + h10 * tau * v0y + h01 * uy + h11 * tau * vy
+        if qx != px or qy != py:
+            z = _segment(p, z[0], z[1], z[2], z[3], z[4], z[5], qx - px, qy - py, h01 - h_prev)
+        px, py, h_prev = qx, qy, h01
+    return z
 
 
 @njit(cache=True)
-def _bearing(p, ucx, ucy, zcx, zcy, ux, uy, vx, vy):
+def _bearing(p, ucx, ucy, zcx, zcy, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
     """The bearing, written once: (f_x, f_y [kip], ∂f/∂u (xx, xy, yx, yy) [kip/in], z_x, z_y)
-    at the trial (ux, uy) [in], (vx, vy) [in/s] from the committed displacement and z. The
-    one-axis kernels call it with the y components zero."""
-    zx, zy, mxx, mxy, myx, myy = _z_chord(p, ucx, ucy, zcx, zcy, ux, uy, vx, vy)
+    at the end (ux, uy) [in], (vx, vy) [in/s] of a step (:func:`_z_path`) from the committed
+    displacement and z. The one-axis kernels call it with the y components and tau zero (the
+    chord)."""
+    zx, zy, mxx, mxy, myx, myy = _z_path(p, ucx, ucy, zcx, zcy, u0x, u0y, v0x, v0y, ux, uy,
+                                         vx, vy, tau)
     qd, kd = p[_QD], p[_KD]
     return (kd * ux + qd * zx, kd * uy + qd * zy, kd + qd * mxx, qd * mxy, qd * myx,
             kd + qd * myy, zx, zy)
@@ -428,14 +481,14 @@ def _bearing(p, ucx, ucy, zcx, zcy, ux, uy, vx, vy):
 def axis_trial(p, s, u, v):
     """Force [kip], df/du [kip/in] and df/dv (0) at the trial (u [in], v [in/s]) from the
     committed state ``s`` (not modified): :func:`_bearing` on the x axis."""
-    r = _bearing(p, s[0], 0.0, s[1], 0.0, u, 0.0, v, 0.0)
+    r = _bearing(p, s[0], 0.0, s[1], 0.0, s[0], 0.0, 0.0, 0.0, u, 0.0, v, 0.0, 0.0)
     return r[0], r[2], 0.0
 
 
 @njit(cache=True)
 def axis_commit(p, s, u, v):
     """Advance the committed state ``s`` in place to the converged (u, v)."""
-    r = _bearing(p, s[0], 0.0, s[1], 0.0, u, 0.0, v, 0.0)
+    r = _bearing(p, s[0], 0.0, s[1], 0.0, s[0], 0.0, 0.0, 0.0, u, 0.0, v, 0.0, 0.0)
     s[0] = u
     s[1] = r[6]
 
@@ -452,10 +505,11 @@ def axis_energy(p, s):
 @njit(cache=True)
 def plan_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
     """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` (zero) (2, 2), written in
-    place, at the end (ux, uy) [in], (vx, vy) [in/s] of a step from the committed state ``s``
-    (not modified). Rate-independent: along the chord; the path's start (u0, v0) and ``tau``
-    are not used."""
-    r = _bearing(p, s[_UCX], s[_UCY], s[_ZCX], s[_ZCY], ux, uy, vx, vy)
+    place, at the end (ux, uy) [in], (vx, vy) [in/s] of a step of duration ``tau`` [s] from the
+    committed state ``s`` (not modified), start velocity (v0x, v0y): z along the step's path
+    (:func:`_z_path`; the chord for tau = 0)."""
+    r = _bearing(p, s[_UCX], s[_UCY], s[_ZCX], s[_ZCY], u0x, u0y, v0x, v0y, ux, uy, vx, vy,
+                 tau)
     f[0] = r[0]
     f[1] = r[1]
     k[0, 0] = r[2]
@@ -470,9 +524,11 @@ def plan_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
 
 @njit(cache=True)
 def plan_commit(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
-    """Advance the committed state ``s`` in place to the converged (ux, uy): z along the chord,
-    and the turning direction for the solver (:func:`plan_turn_direction`)."""
-    r = _bearing(p, s[_UCX], s[_UCY], s[_ZCX], s[_ZCY], ux, uy, vx, vy)
+    """Advance the committed state ``s`` in place to the converged end (ux, uy) of the step: z
+    along its path (as :func:`plan_trial`), and the turning direction for the solver
+    (:func:`plan_turn_direction`)."""
+    r = _bearing(p, s[_UCX], s[_UCY], s[_ZCX], s[_ZCY], u0x, u0y, v0x, v0y, ux, uy, vx, vy,
+                 tau)
     zx, zy = r[6], r[7]
     s[_UCX] = ux
     s[_UCY] = uy
