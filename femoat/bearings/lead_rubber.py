@@ -89,8 +89,8 @@ increment (Newton on z): first-order accurate in the increment, converging to th
 sgn(z_x·du_x) and sgn(z_y·du_y) (not isotropic), with η = 2, β = 0.1, γ = 0.9 hard-coded.
 
 Lead heating (Kalpakidis & Constantinou 2009, LeadRubberX's option: Q_d·exp(−E_2·ΔT_L) with the
-lead temperature driven by the power Q_d·|v|·|z|) is not modelled: it is rate-dependent (it needs
-the velocity and the time step, which a rate-independent chord trial does not use) and
+lead temperature driven by the power Q_d·|v|·|z|) is not modelled: it is rate-dependent (it
+integrates the dissipated power over time, where this rule depends on the path only) and
 LeadRubberX integrates it from its node velocities, which are zero in a static analysis, so it
 has no static twin to check it against; its constants are in SI units and it needs the bearing's
 geometry (lead core diameter, layers, shims), none of which this bearing carries.
@@ -206,7 +206,7 @@ def _phi(c, eta, rho):
     return c * rho ** (eta - 2.0)
 
 
-# ---- one phase of a chord: z and M = ∂z/∂Δu (row i, column j: ∂z_i/∂Δu_j) -----------------------
+# ---- one phase of a straight segment: z and M = ∂z/∂u (row i, column j: ∂z_i/∂u_j) ------------
 
 
 @njit(cache=True)
@@ -367,7 +367,7 @@ def _piece(p, c, sign, one_d, zx, zy, mxx, mxy, myx, myy, dx, dy, f0, f1, w):
 @njit(cache=True)
 def _unloading_end(p, c, one_d, zx, zy, dx, dy):
     """The fraction of the segment (dx, dy) at which z·Δu reaches 0 from z·Δu < 0 (the end of
-    unloading, c = γ − β on the way), 2 if it does not within the chord."""
+    unloading, c = γ − β on the way), 2 if it does not within the segment."""
     eta, yd = p[_ETA], p[_UY]
     length = np.sqrt(dx * dx + dy * dy)
     a0 = (zx * dx + zy * dy) / length
