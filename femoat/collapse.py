@@ -63,6 +63,14 @@ class DriftRatio:
                 for e, role in enumerate(packed.el_roles) if role.kind == STORY]
 
 
+def isolator_capacity(building):
+    """The isolator's displacement capacity [in]: the building's ``isolator_capacity``, or the
+    bearing's own ``capacity`` where smaller (a triple friction pendulum's ultimate displacement,
+    a lead-rubber bearing's given limit; a single friction pendulum has none of its own)."""
+    own = getattr(building.isolator, "capacity", math.inf)
+    return min(building.isolator_capacity, own)
+
+
 @dataclass(frozen=True)
 class IsolatorCapacity:
     """The isolator: |displacement| above the building's ``isolator_capacity`` [in] (none when
@@ -71,7 +79,7 @@ class IsolatorCapacity:
     name = "isolator"
 
     def limits(self, model, packed):
-        capacity = model.building.isolator_capacity
+        capacity = isolator_capacity(model.building)
         if not math.isfinite(capacity):
             return []
         rows = [Limit("element_deformation", e, capacity, criterion=self.name)
@@ -201,17 +209,18 @@ def runaway_limits(model, packed):
     """The rows that end every run: a story drift of RUNAWAY_DRIFT × its height, an isolator
     displacement of RUNAWAY_ISOLATOR × its capacity (none when the capacity is infinite)."""
     b = model.building
+    capacity = isolator_capacity(b)
     rows = []
     for e, role in enumerate(packed.el_roles):
         if role.kind == STORY:
             rows.append(Limit("element_deformation", e, RUNAWAY_DRIFT * b.heights[role.story - 1],
                               runaway=True, criterion=DriftRatio.name))
-        elif role.kind == ISOLATOR and math.isfinite(b.isolator_capacity):
-            rows.append(Limit("element_deformation", e, RUNAWAY_ISOLATOR * b.isolator_capacity,
+        elif role.kind == ISOLATOR and math.isfinite(capacity):
+            rows.append(Limit("element_deformation", e, RUNAWAY_ISOLATOR * capacity,
                               runaway=True, criterion=IsolatorCapacity.name))
-    if getattr(packed, "bearing_dofs", np.zeros(0)).size and math.isfinite(b.isolator_capacity):
+    if getattr(packed, "bearing_dofs", np.zeros(0)).size and math.isfinite(capacity):
         # a plan bearing: its displacement in plan (femoat.plan)
-        rows.append(Limit("plan_displacement", 0, RUNAWAY_ISOLATOR * b.isolator_capacity,
+        rows.append(Limit("plan_displacement", 0, RUNAWAY_ISOLATOR * capacity,
                           runaway=True, criterion=IsolatorCapacity.name))
     return rows
 

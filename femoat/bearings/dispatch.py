@@ -18,10 +18,21 @@ from femoat.bearings.friction_pendulum import (
     plan_branch as _plan_branch_0,
     plan_turn_direction as _plan_turn_direction_0,
 )
+from femoat.bearings.lead_rubber import (
+    axis_trial as _axis_trial_1,
+    axis_commit as _axis_commit_1,
+    axis_energy as _axis_energy_1,
+    plan_trial as _plan_trial_1,
+    plan_commit as _plan_commit_1,
+    plan_energy as _plan_energy_1,
+    plan_branch as _plan_branch_1,
+    plan_turn_direction as _plan_turn_direction_1,
+)
 from femoat.compilation.jit import njit
 
 KINDS = (
     'femoat.bearings.friction_pendulum',
+    'femoat.bearings.lead_rubber',
 )
 """The kinds this dispatcher was generated for."""
 
@@ -33,6 +44,8 @@ def bearing_axis_trial(kind, p, s, u, v):
     """:func:`axis_trial` of bearing kind ``kind``."""
     if kind == 0:
         return _axis_trial_0(p, s, u, v)
+    if kind == 1:
+        return _axis_trial_1(p, s, u, v)
     return (np.nan, np.nan, np.nan)
 
 
@@ -42,6 +55,9 @@ def bearing_axis_commit(kind, p, s, u, v):
     if kind == 0:
         _axis_commit_0(p, s, u, v)
         return
+    if kind == 1:
+        _axis_commit_1(p, s, u, v)
+        return
 
 
 @njit(cache=True)
@@ -49,6 +65,8 @@ def bearing_axis_energy(kind, p, s):
     """:func:`axis_energy` of bearing kind ``kind``."""
     if kind == 0:
         return _axis_energy_0(p, s)
+    if kind == 1:
+        return _axis_energy_1(p, s)
     return np.nan
 
 
@@ -58,6 +76,9 @@ def bearing_plan_trial(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k
     if kind == 0:
         _plan_trial_0(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c)
         return
+    if kind == 1:
+        _plan_trial_1(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c)
+        return
 
 
 @njit(cache=True)
@@ -66,6 +87,9 @@ def bearing_plan_commit(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
     if kind == 0:
         _plan_commit_0(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
         return
+    if kind == 1:
+        _plan_commit_1(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
+        return
 
 
 @njit(cache=True)
@@ -73,6 +97,8 @@ def bearing_plan_energy(kind, p, s):
     """:func:`plan_energy` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_energy_0(p, s)
+    if kind == 1:
+        return _plan_energy_1(p, s)
     return np.nan
 
 
@@ -81,6 +107,8 @@ def bearing_plan_branch(kind, p, s, ux, uy):
     """:func:`plan_branch` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_branch_0(p, s, ux, uy)
+    if kind == 1:
+        return _plan_branch_1(p, s, ux, uy)
     return -1
 
 
@@ -89,4 +117,6 @@ def bearing_plan_turn_direction(kind, s):
     """:func:`plan_turn_direction` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_turn_direction_0(s)
+    if kind == 1:
+        return _plan_turn_direction_1(s)
     return (0.0, 0.0)

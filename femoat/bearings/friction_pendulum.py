@@ -463,3 +463,54 @@ AXIS_CLASS = FrictionPendulum
 
 PLAN_CLASS = BidirectionalFrictionPendulum
 """The bearing in plan (the isolator of a plan building)."""
+
+
+# ---- OpenSees twins ------------------------------------------------------------------------------
+
+OPENSEES_AXIAL_LOAD = True
+"""The plan twin's slider takes its normal force from its axial material: the base mat's vertical
+DOF is free and a gravity step puts N = W on it before the transient (femoat.opensees.plan)."""
+
+OPENSEES_AXIAL_STIFFNESS = 1.0e6
+"""Axial (and rotational) stiffness of the flat slider [kip/in]: it only carries N = W."""
+
+
+def opensees_axis_material(bearing, mat_tag):
+    """The openseespy calls of the 1D twin of ``bearing``: ``Elastic`` W/R in ``Parallel`` with
+    ``ElasticPP`` (μW/u_y, u_y), the same elastic-perfectly-plastic rule as the one-axis kernels;
+    the last material is the bearing. Returns (commands, the next free material tag).
+
+    Raises ValueError for a velocity-dependent μ (``mu_fast``): ElasticPP's friction is
+    constant (the 3D twin's ``VelDependent`` friction model is close, not exact)."""
+    b = bearing
+    if b.mu_fast is not None:
+        raise ValueError(
+            "isolator: a velocity-dependent friction coefficient (mu_fast) has no exact OpenSees "
+            "twin in 1D (ElasticPP friction is constant-μ; the 3D twin femoat.opensees.plan "
+            "has a close VelDependent one); set mu_fast=None to cross-check.")
+    return [("uniaxialMaterial", "Elastic", mat_tag, b.W / b.R),
+            ("uniaxialMaterial", "ElasticPP", mat_tag + 1, b.mu * b.W / b.u_y, b.u_y),
+            ("uniaxialMaterial", "Parallel", mat_tag + 2, mat_tag, mat_tag + 1)], mat_tag + 3
+
+
+def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag):
+    """The openseespy calls of the 3D twin of ``bearing`` between ``i_node`` (ground) and
+    ``j_node`` of a ``-ndm 3 -ndf 6`` model, shear in global x, y: ``flatSliderBearing``
+    ``ele_tag`` (friction model ``mat_tag``: ``Coulomb`` μ, or ``VelDependent`` (μ_slow, μ_fast,
+    a); kInit = μ_slow·W/u_y; a stiff axial material; rotations and torsion elastic) in parallel
+    with a ``zeroLength`` W/R spring ``ele_tag + 1`` in x and y. Its normal force comes from the
+    axial load W (:data:`OPENSEES_AXIAL_LOAD`). Returns (commands, the next free material
+    tag)."""
+    b = bearing
+    friction = (("frictionModel", "Coulomb", mat_tag, b.mu) if b.mu_fast is None else
+                ("frictionModel", "VelDependent", mat_tag, b.mu, b.mu_fast, b.a))
+    return [friction,
+            ("uniaxialMaterial", "Elastic", mat_tag, OPENSEES_AXIAL_STIFFNESS),
+            ("uniaxialMaterial", "Elastic", mat_tag + 1, b.W / b.R),
+            # local x along global z (the bearing's axis), local y along global x: the shear
+            # directions y, z are the global x, y
+            ("element", "flatSliderBearing", ele_tag, i_node, j_node, mat_tag,
+             b.mu * b.W / b.u_y, "-P", mat_tag, "-T", mat_tag, "-My", mat_tag, "-Mz", mat_tag,
+             "-orient", 0.0, 0.0, 1.0, 1.0, 0.0, 0.0),
+            ("element", "zeroLength", ele_tag + 1, i_node, j_node,
+             "-mat", mat_tag + 1, mat_tag + 1, "-dir", 1, 2)], mat_tag + 2

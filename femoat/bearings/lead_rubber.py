@@ -682,6 +682,10 @@ PLAN_CLASS = LeadRubberBearing
 
 # ---- OpenSees twins -----------------------------------------------------------------------------
 
+OPENSEES_AXIAL_LOAD = False
+"""The plan twin needs no normal force (the hysteresis does not depend on it): the base mat's
+vertical DOF stays fixed, no gravity step."""
+
 AXIAL_STIFFNESS = 1.0e6
 """Stiffness [kip/in, kip·in/rad] of the twin element's axial, torsional and rocking springs."""
 

@@ -25,6 +25,7 @@ from pathlib import Path
 
 KINDS = (
     "femoat.bearings.friction_pendulum",
+    "femoat.bearings.lead_rubber",
 )
 """The bearing kinds' modules, in code order (append only)."""
 

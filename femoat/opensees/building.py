@@ -67,7 +67,8 @@ import numpy as np
 from femoat.contact.laws import ContactLaw
 from femoat.opensees.available import import_opensees
 from femoat.opensees.single_impact import opensees_contact_material
-from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
+from femoat.bearings import registry as bearing_registry
+from femoat.structure.materials import Bilinear, Elastic, IMKBilinear
 from femoat.structure.pounding import PoundingModel, wall_modes
 from femoat.units import G
 
@@ -102,15 +103,19 @@ def story_material(mat):
                      "(use Elastic, Bilinear or IMKBilinear).")
 
 
+def axis_twin(kind):
+    """The 1D twin builder ``opensees_axis_material(bearing, mat_tag)`` of bearing kind ``kind``
+    (:mod:`femoat.bearings`); ValueError when the kind has none."""
+    mod = bearing_registry.module(kind)
+    if not hasattr(mod, "opensees_axis_material"):
+        raise ValueError(f"isolator: the {mod.KEY!r} bearing has no 1D OpenSees twin; check it "
+                         "in plan (femoat.opensees.plan) with the record along x and y at rest.")
+    return mod.opensees_axis_material
+
+
 def _check_model(model):
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
-    iso = model.building.isolator
-    if isinstance(iso, FrictionPendulum) and iso.mu_fast is not None:
-        raise ValueError(
-            "isolator: a velocity-dependent friction coefficient (mu_fast) has no exact OpenSees "
-            "twin in 1D (ElasticPP friction is constant-μ; the 3D twin femoat.opensees.plan "
-            "has a close VelDependent one); set mu_fast=None to cross-check.")
     if model.building.p_delta:
         raise ValueError("building: the OpenSees twin has no P-Delta (p_delta=True); build the "
                          "Building with p_delta=False to cross-check it.")
@@ -133,12 +138,11 @@ def opensees_commands(model, motion):
         cmds += [("node", _BASE + k, 0.0), ("mass", _BASE + k, w / G)]
     mat = 1
     iso = b.isolator
-    if isinstance(iso, FrictionPendulum):
-        cmds += [("uniaxialMaterial", "Elastic", mat, iso.W / iso.R),
-                 ("uniaxialMaterial", "ElasticPP", mat + 1, iso.mu * iso.W / iso.u_y, iso.u_y),
-                 ("uniaxialMaterial", "Parallel", mat + 2, mat, mat + 1),
-                 ("element", "zeroLength", _ISO_ELE, _GROUND, _BASE, "-mat", mat + 2, "-dir", 1)]
-        mat += 3
+    kind = None if iso is None else bearing_registry.kind_of(iso)
+    if kind is not None:  # the bearing kind's own 1D twin: its last material is the bearing
+        made, mat = axis_twin(kind)(iso, mat)
+        cmds += [*made,
+                 ("element", "zeroLength", _ISO_ELE, _GROUND, _BASE, "-mat", mat - 1, "-dir", 1)]
     elif isinstance(iso, Elastic):
         cmds += [("uniaxialMaterial", "Elastic", mat, iso.k),
                  ("element", "zeroLength", _ISO_ELE, _GROUND, _BASE, "-mat", mat, "-dir", 1)]

@@ -91,15 +91,14 @@ from femoat.opensees.building import (
     wall_load_commands,
 )
 from femoat.opensees.single_impact import opensees_contact_material
+from femoat.bearings import registry as bearing_registry
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.model import PlanModel
 from femoat.units import G
 
 _GROUND, _BASE = 1, 2  # the 1D twin's tags (its wall chains hang from _GROUND)
 _BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _CONTACT_ELE = 1, 2, 10, 200
-_GRAVITY, _FRICTION = 10, 1
-_AXIAL_STIFFNESS = 1.0e6
-"""Axial (and rotational) stiffness of the flat slider [kip/in]: it only carries N = W."""
+_GRAVITY = 10
 
 
 def _check(model, pair):
@@ -115,12 +114,13 @@ def _check(model, pair):
                              "friction=0.0 to cross-check.")
 
 
-def _friction_model(iso):
-    """The ``frictionModel`` command of the bearing: ``Coulomb`` μ, or ``VelDependent`` (μ_slow,
-    μ_fast, a) for a velocity-dependent μ (module docstring: how exact it is)."""
-    if iso.mu_fast is None:
-        return ("frictionModel", "Coulomb", _FRICTION, iso.mu)
-    return ("frictionModel", "VelDependent", _FRICTION, iso.mu, iso.mu_fast, iso.a)
+def plan_twin(kind):
+    """The module of bearing kind ``kind`` (:mod:`femoat.bearings`), which builds its 3D twin
+    (``opensees_plan_element``, ``OPENSEES_AXIAL_LOAD``); ValueError when it has none."""
+    mod = bearing_registry.module(kind)
+    if not hasattr(mod, "opensees_plan_element"):
+        raise ValueError(f"isolator: the {mod.KEY!r} bearing has no OpenSees twin.")
+    return mod
 
 
 def _story_top(mat, dashpot, geometric, tag):
@@ -169,7 +169,9 @@ def opensees_plan_commands(model, pair):
     _check(model, pair)
     b = model.building
     iso = b.isolator
-    slider = isinstance(iso, BidirectionalFrictionPendulum)
+    kind = None if iso is None else bearing_registry.kind_of(iso)
+    twin = None if kind is None else plan_twin(kind)
+    slider = twin is not None and twin.OPENSEES_AXIAL_LOAD
     cmds = [("wipe",), ("model", "basic", "-ndm", 3, "-ndf", 6),
             ("node", _GROUND, 0.0, 0.0, 0.0), ("fix", _GROUND, 1, 1, 1, 1, 1, 1)]
     for k, w in enumerate([b.base_weight, *b.floor_weights]):
@@ -178,18 +180,9 @@ def opensees_plan_commands(model, pair):
                  ("fix", _BASE + k, 0, 0, z_free, 1, 1, 1),
                  ("mass", _BASE + k, w / G, w / G, 0.0, 0.0, 0.0, 0.0)]
     mat = 1
-    if slider:
-        cmds += [_friction_model(iso),
-                 ("uniaxialMaterial", "Elastic", mat, _AXIAL_STIFFNESS),
-                 ("uniaxialMaterial", "Elastic", mat + 1, iso.W / iso.R),
-                 # local x along global z (the bearing's axis), local y along global x: the
-                 # shear directions y, z are the global x, y
-                 ("element", "flatSliderBearing", _BEARING_ELE, _GROUND, _BASE, _FRICTION,
-                  iso.mu * iso.W / iso.u_y, "-P", mat, "-T", mat, "-My", mat, "-Mz", mat,
-                  "-orient", 0.0, 0.0, 1.0, 1.0, 0.0, 0.0),
-                 ("element", "zeroLength", _ISO_SPRING_ELE, _GROUND, _BASE,
-                  "-mat", mat + 1, mat + 1, "-dir", 1, 2)]
-        mat += 2
+    if twin is not None:  # the bearing kind's own 3D twin (elements _BEARING_ELE, the next)
+        made, mat = twin.opensees_plan_element(iso, _BEARING_ELE, _GROUND, _BASE, mat)
+        cmds += made
     elif iso is not None:  # Elastic
         cmds += [("uniaxialMaterial", "Elastic", mat, iso.k),
                  ("element", "zeroLength", _ISO_SPRING_ELE, _GROUND, _BASE,
@@ -298,7 +291,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
         with captured_stderr(log):
             for name, *args in cmds:
                 getattr(ops, name)(*args)
-            if isinstance(model.building.isolator, BidirectionalFrictionPendulum):
+            if isinstance(model.building.isolator, BidirectionalFrictionPendulum):  # N = W
                 normal = -ops.eleResponse(_BEARING_ELE, "basicForce")[0]
             rows, T = _nodes(model)
             for (node, d), vi, ai in zip(rows, T @ v, T @ a):
