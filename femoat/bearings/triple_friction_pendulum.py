@@ -533,7 +533,7 @@ AXIAL_STIFFNESS = 1e10
 """Stiffness [kip/in] of the twin's vertical (compression) material, and of its rotations."""
 
 
-def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag):
+def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
     """The openseespy calls that build ``bearing``'s twin, OpenSees' ``TripleFrictionPendulum``,
     between nodes ``i_node`` (below) and ``j_node`` (above) of a ``-ndm 3 -ndf 6`` model: shear in
     global x and y, axis global z. Returns (commands, next_mat_tag): commands as tuples
@@ -549,9 +549,13 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag):
     The twin equals this module's series model (module docstring): OpenSees' friction inputs
     are μ_i·k_0/(k_0 − W/L̄_i) and its u_y is u_y·μ1_OS/μ1, which make its hardening elements
     the spring plus friction disk of stiffness k_0 here; its outer surfaces are listed so that
-    the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3). Its convergence
-    tolerance is 1e-5 (relative to the step; smaller values stall its iteration), and its
-    first step from rest must stay below about 3·u_y (larger ones end in a wrong state).
+    the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3).
+
+    ``tol`` is the element's convergence tolerance, relative to the step: at 1e-5 a step that
+    crosses a transition can leave its internal split off by 1e-5 of the step (a lasting
+    offset of ~1e-9 of the force on one axis); 1e-7 to 1e-9 agree with this module to rounding
+    on one axis; 1e-11 stalls its iteration (a wrong state, a hundred times slower). Its first
+    step from rest must stay below about 3·u_y (a larger one ends in a wrong state).
     """
     b = bearing
     k0 = b.sticking_stiffness
@@ -569,5 +573,5 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag):
                  for tag in (vertical, rot_z, rot_x, rot_y)]
     commands.append(("element", "TripleFrictionPendulum", ele_tag, i_node, j_node, *friction,
                      vertical, rot_z, rot_x, rot_y, b.L1, l2, l3, b.d1, d2, d3, b.W, u_y,
-                     1.0, 0.1, 1e-5))
+                     1.0, 0.1, tol))
     return commands, mat_tag + 7
