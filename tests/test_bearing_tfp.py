@@ -361,6 +361,22 @@ def test_one_step_from_rest_is_the_monotonic_backbone():
         np.testing.assert_allclose(r[:2], backbone_force(b, u) * d, rtol=1e-12)
 
 
+def test_far_trials_are_solved_and_a_nan_trial_gives_nan():
+    # Far past the capacity every restrainer carries the excess (one trial from rest and from a
+    # loaded state: finite, on the backbone along the line); a NaN trial gives a NaN force (the
+    # solver's signal), at once.
+    b = BEARING
+    p = b.params()
+    r = tfp.series_solve(p, b.initial_state(), 300.0, -400.0)
+    np.testing.assert_allclose(r[:2], backbone_force(b, 500.0) * np.array([0.6, -0.8]),
+                               rtol=1e-12)
+    s = b.initial_state()
+    tfp.plan_commit(p, s, 0.0, 0.0, 0.0, 0.0, 20.0, 5.0, 0.0, 0.0, 0.0)
+    assert np.all(np.isfinite(tfp.series_solve(p, s, -300.0, 400.0)[:5]))
+    r = tfp.series_solve(p, s, np.nan, 0.0)
+    assert np.isnan(r[0]) and np.isnan(r[2]) and r[17] == 1
+
+
 def test_tangent_is_the_derivative_of_the_force():
     # The condensed tangent (Σ C_i)⁻¹ against central differences of the force from the same
     # committed state, at states along a random plan walk (sticking, sliding, restrainers).
