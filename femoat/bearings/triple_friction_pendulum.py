@@ -557,6 +557,9 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
     the spring plus friction disk of stiffness k_0 here; its outer surfaces are listed so that
     the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3).
 
+    Its tension stiffness kvt = 1 kip/in and minimum axial force minFv = 0.1 kip only act on
+    uplift, which this module does not model.
+
     ``tol`` is the element's convergence tolerance, relative to the step: at 1e-5 a step that
     crosses a transition can leave its internal split off by 1e-5 of the step (a lasting
     offset of ~1e-9 of the force on one axis); 1e-7 to 1e-9 agree with this module to rounding
