@@ -535,8 +535,15 @@ PLAN_CLASS = TripleFrictionPendulum
 
 # ---- the OpenSees twin -------------------------------------------------------------------------
 
-AXIAL_STIFFNESS = 1e10
-"""Stiffness [kip/in] of the twin's vertical (compression) material, and of its rotations."""
+OPENSEES_AXIAL_LOAD = True
+"""The plan twin takes its normal force from its vertical material: the j node's vertical DOF is
+free and a static gravity step puts N = W on it before the analysis (:func:`opensees_plan_element`).
+There is no 1D twin (OpenSees' TripleFrictionPendulum is a 3D element, not a uniaxial
+material): check the bearing in plan."""
+
+AXIAL_STIFFNESS = 1.0e6
+"""Stiffness [kip/in, kip·in/rad] of the twin's vertical (compression) material and of its
+rotational ones."""
 
 
 def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
@@ -550,7 +557,7 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
     Axial load: the element's friction and pendulum forces are proportional to its axial force
     N from the vertical material (not to ``bearing.W``, which only seeds its first trial), so the
     model must carry N = W: ``j_node`` free in z with a load −W in z on it (a static step before
-    the analysis, then held constant, as for the flat slider of :mod:`femoat.opensees.plan`).
+    the analysis, then held constant: :data:`OPENSEES_AXIAL_LOAD`).
 
     The twin equals this module's series model (module docstring): OpenSees' friction inputs
     are μ_i·k_0/(k_0 − W/L̄_i) and its u_y is u_y·μ1_OS/μ1, which make its hardening elements
