@@ -242,7 +242,8 @@ def loop_energy_numeric(b, amplitude, step):
     """∮F du over the cycle A → −A → A (after loading 0 → A), by trapezoids between committed
     points at most ``step`` apart, each step landed just past any change of branch (located by
     bisection to 2^-60 of the step) so that F is linear between points: the trapezoids are then
-    exact up to rounding (and a kink in the first 2^-20 of a step, ~1e-12 of the work). Also returns the recoverable energy at A before and after."""
+    exact up to rounding (and a kink in the first 2^-20 of a step, ~1e-12 of the work). Also
+    returns the recoverable energy at A before and after."""
     p, s = b.params(), b.initial_state()
     u_now = 0.0
     work = 0.0
