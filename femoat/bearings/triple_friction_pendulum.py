@@ -1,0 +1,593 @@
+"""The triple friction-pendulum bearing: a bearing kind (:mod:`femoat.bearings`), one plan element
+that is also its own one-axis form.
+
+Notation of OpenSees' ``TripleFrictionPendulum`` (Dao et al., 2013): L1 the effective radius
+(R − h) of the two inner surfaces (the inner slider, friction μ1, displacement capacity d1 on
+each), L2 and L3 those of the two outer surfaces (friction μ2 and μ3, capacities d2 and d3).
+In Fenz & Constantinou's (2008) notation 1, 2/3, 4: L2 = R_eff1, L1 = R_eff2 = R_eff3,
+L3 = R_eff4, μ2 = μ_1, μ1 = μ_2 = μ_3, μ3 = μ_4, d2 = d_1, d1 = d_2 = d_3, d3 = d_4.
+
+Series model (Fenz & Constantinou, 2008): three plan friction pendulums in series carry the same
+force F [kip] and add up to the bearing's displacement u = d_1 + d_2 + d_3 [in]:
+
+    element 1 (inner slider, surfaces 2 and 3):  radius 2·L1,     friction μ1, gap 2·(d1 + L1·m)
+    element 2 (outer surface of L2):              radius L2 − L1,  friction μ2, gap d2·(1 − L1/L2)
+    element 3 (outer surface of L3):              radius L3 − L1,  friction μ3, gap d3·(1 − L1/L3)
+
+with m = min(d2/L2, d3/L3). Each element i is a single friction pendulum (as in
+:mod:`femoat.bearings.friction_pendulum`) plus a restrainer, in parallel:
+
+    f_i = (W/L̄_i)·d_i + μ_i·W·z_i + k_0·(|d_i| − g_i)₊·d_i/|d_i|
+
+z_i the element's hysteretic vector in the unit disk, integrated by radial return with the
+element's yield displacement u_y,i = μ_i·W/(k_0 − W/L̄_i), so that every element is elastic with
+the one stiffness k_0 = 3·μ1·W/u_y while it sticks: three in series start at μ1·W/u_y, and the
+bearing first slides at a displacement 3·u_y,1 ≈ u_y (``yield_deformation``). The restrainer of
+element i (the slider reaching the rim of its surfaces) acts past its gap g_i with the same
+stiffness k_0 (as OpenSees' element). The bearing stiffens for good once element 1 reaches its
+gap, at ``capacity`` = g_1 + g_2 + g_3 = 2·d1 + d2 + d3 − L1·|d2/L2 − d3/L3| [in].
+
+Regimes on one axis, rigid-plastic (u_y → 0), with μ1 < μ2 ≤ μ3 and the outer surface of L2
+reaching its restrainer first (F_dr1 ≤ F_dr4), F&C's closed forms, F [kip] against u [in]:
+
+    I    0    ≤ u ≤ u*:     F = μ1·W + W·u/(2·L1)                   (element 1 slides)
+    II   u*   ≤ u ≤ u**:    F = μ2·W + W·(u − u*)/(L1 + L2)         (1 and 2)
+    III  u**  ≤ u ≤ u_dr1:  F = μ3·W + W·(u − u**)/(L2 + L3)        (1, 2 and 3)
+    IV   u_dr1 ≤ u ≤ u_dr4: F = F_dr1 + W·(u − u_dr1)/(L1 + L3)     (2 at its restrainer)
+    V    u_dr4 ≤ u ≤ u_ult: F = F_dr4 + W·(u − u_dr4)/(2·L1)        (3 too)
+
+    u* = 2·L1·(μ2 − μ1),  u** = u* + (L1 + L2)·(μ3 − μ2),
+    F_dr1 = W·(μ2 + d2/L2),  u_dr1 = u** + (L2 + L3)·(F_dr1/W − μ3),
+    F_dr4 = W·(μ3 + d3/L3),  u_dr4 = u_dr1 + (L1 + L3)·(F_dr4 − F_dr1)/W,
+    u_ult = ``capacity``     (F = W·(μ1 + d1/L1 + m))
+
+With u_y > 0 each element i sticking carries d_i = F/k_0, sliding d_i = (F − μ_i·W)·L̄_i/W, the
+larger of the two (it starts sliding at F = μ_i·W·k_0/(k_0 − W/L̄_i)), and past its gap
+d_i = g_i + (F − μ_i·W − W·g_i/L̄_i)/(W/L̄_i + k_0): the backbone is u(F) = Σ d_i(F), which the
+tests check to round-off, and which tends to F&C's as u_y → 0 (at first order in u_y).
+
+Ultimate displacement. OpenSees' documentation gives 2·d1 + d2 + d3 + L1·d3/L3 − L1·d2/L2 (its
+element 1's gap is 2·(d1 + L1·d3/L3)). With both outer sliders at their restrainers (F&C's
+regime V) the inner slider's displacements on the surfaces next to those of L2 and L3 are
+L1·(F/W − μ1 − d2/L2) and L1·(F/W − μ1 − d3/L3): the first to reach d1 is the one next to the
+outer surface of smaller d/L, at u = 2·d1 + d2 + d3 − L1·|d2/L2 − d3/L3|. That is OpenSees'
+formula when d3/L3 ≤ d2/L2 (a symmetric bearing: 2·d1 + 2·d2); otherwise OpenSees stiffens
+2·L1·(d3/L3 − d2/L2) too late. This module uses m = min(d2/L2, d3/L3); its OpenSees twin
+(:func:`opensees_plan_element`) lists the outer surfaces so that OpenSees' gap is the same.
+
+Series solve (one per trial, from the committed internal state): the internal displacements
+minimise the elements' incremental energy Φ = Σ φ_i(d_i) subject to Σ d_i = u, with
+
+    φ_i(d) = (W/L̄_i)·|d|²/2 + μ_i·W·u_y,i·H(z_c,i + (d − d_c,i)/u_y,i) + k_0·(|d| − g_i)₊²/2,
+    H(t) = |t|²/2 (|t| ≤ 1), |t| − 1/2 (|t| > 1),
+
+whose gradient is f_i(d): strictly convex (W/L̄_i > 0), so the series state exists and is unique;
+the common force F is the constraint's multiplier. Newton's step from a feasible point keeps
+Σ d_i = u: with K_i = ∂f_i/∂d_i (symmetric, positive definite) and C_i = K_i⁻¹,
+
+    F = (Σ C_i)⁻¹·Σ C_i·f_i,   Δd_i = C_i·(F − f_i)      (2×2 matrices only),
+
+halved until Φ decreases enough (Armijo), which makes it converge from any start. It starts
+from the committed state with the increment split by each element's compliance as it was
+(sliding on along its z, or sticking): exact on one axis when no element changes branch. On
+one axis Φ is piecewise quadratic and Newton ends on the exact solution (1.1 iterations a
+trial on a random history, the last one the check); in plan it converges quadratically (3.5 to
+4.6; at most 15 seen, 12 for one step from rest to past the capacity: measured by
+``benchmarks/tfp_bearing.py``). It stops when the largest internal step is below
+TOLERANCE·(|u| + capacity). The force returned is the last F (second-order accurate in that
+step), the consistent tangent ∂F/∂u = (Σ C_i)⁻¹ at the solution (the condensed series). The
+force and tangent are NaN only for a NaN or infinite trial, or if the iteration had not come
+within ACCEPT·(|u| + capacity) after MAX_ITERATIONS (never seen); the solver turns NaN into an
+error. ∂F/∂v = 0 (constant friction: velocity dependence is not modelled).
+
+Path of a step: the plan kernels take the step's path arguments (u0, v0, tau) of the contract
+but use the chord: each element returns radially once from its committed state, so the force
+is a function of the end point (ux, uy) only. On a curved orbit the friction direction then lags
+the sliding direction by about half the step's turn (first order in the step, as the single
+friction pendulum's single return). Along one axis the plan element is the one-axis element to
+the bit: the axis kernels call the plan core with u_y = v_y = 0.
+
+OpenSees twin: ``TripleFrictionPendulum`` (Dao et al., 2013) is this series model, each element
+a kinematic-hardening plasticity (elastic modulus E = 3·μ1_OS/u_y_OS·W for all three, the
+quirk) in parallel with a circular gap spring of stiffness E. Linear kinematic hardening with a
+circular yield surface and radial return is exactly a spring of the post-yield stiffness in
+parallel with an elastic-perfectly-plastic disk of stiffness E − W/L̄_i and strength
+μ_OS·(1 − W/(L̄_i·E)): OpenSees' friction force while sliding is μ_OS·W·(1 − W/(L̄_i·E)), not
+μ_OS·W. :func:`opensees_plan_element` therefore gives OpenSees μ_i·k_0/(k_0 − W/L̄_i) and
+u_y_OS = u_y·μ1_OS/μ1, so that its elements are these to round-off.
+
+Params ``p = [W, u_y, k_0, kr_1, q_1, uy_1, g_1, kr_2, q_2, uy_2, g_2, kr_3, q_3, uy_3, g_3,
+scale]``: weight [kip], u_y [in], k_0 [kip/in], then per element its restoring stiffness W/L̄_i
+[kip/in], friction force μ_i·W [kip], yield displacement [in] and gap [in], and the length
+[in] that scales the solver's tolerances (the capacity). State (one axis and plan alike,
+``N_STATE_AXIS = N_STATE_PLAN``): ``s = [d_1x, d_1y, d_2x, d_2y, d_3x, d_3y, z_1x, z_1y, z_2x,
+z_2y, z_3x, z_3y]``, the committed internal displacements [in] and hysteretic vectors [-] (on
+one axis the y entries stay 0).
+
+Recoverable energy: Σ_i (W/L̄_i)·|d_i|²/2 + μ_i·W·u_y,i·|z_i|²/2 + k_0·(|d_i| − g_i)₊²/2.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from femoat import checks as _checks
+from femoat.bearings import registry
+from femoat.compilation.jit import njit
+
+KEY = "tfp"
+"""The bearing's key in scenario and suite files (``[building.isolator] type = "tfp"``)."""
+
+N_PARAMS = 16
+N_STATE_PLAN = 12
+N_STATE_AXIS = N_STATE_PLAN  # one axis is the plan element with its y entries at 0
+N_STATE = N_STATE_AXIS  # the one-axis form's (the material convention)
+_W, _UY, _K0 = range(3)
+_E0 = 3  # element i's [kr, q, uy, gap] start at _E0 + 4·i
+_SCALE = 15
+
+MAX_ITERATIONS = 60
+"""Newton iterations of a series solve before it gives up (the force is then NaN)."""
+
+TOLERANCE = 1e-14
+"""Newton stops when its largest internal step is below this fraction of |u| + the capacity."""
+
+ACCEPT = 1e-9
+"""After MAX_ITERATIONS, a solve whose last step is below this fraction still counts."""
+
+
+# ---- one series element ------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _element(p, i, s, dx, dy):
+    """Series element ``i`` (0, 1, 2) at the trial (dx, dy) [in] from the committed state ``s``:
+    force (fx, fy) [kip], symmetric tangent (kxx, kxy, kyy) [kip/in], incremental energy φ
+    [kip·in], hysteretic vector (zx, zy), sliding (0/1) and restrainer contact (0/1)."""
+    b = _E0 + 4 * i
+    kr, q, uyi, gap, ks = p[b], p[b + 1], p[b + 2], p[b + 3], p[_K0]
+    tx = s[6 + 2 * i] + (dx - s[2 * i]) / uyi
+    ty = s[7 + 2 * i] + (dy - s[2 * i + 1]) / uyi
+    t = np.sqrt(tx * tx + ty * ty)
+    if t > 1.0:  # sliding: z = t/|t|, ∂z/∂d = (I − z zᵀ)/(u_y,i·|t|)
+        zx, zy = tx / t, ty / t
+        g = q / (uyi * t)
+        kxx = kr + g * (1.0 - zx * zx)
+        kxy = -g * zx * zy
+        kyy = kr + g * (1.0 - zy * zy)
+        energy = q * uyi * (t - 0.5)
+        sliding = 1
+    else:  # sticking: ∂z/∂d = I/u_y,i
+        zx, zy = tx, ty
+        kxx = kr + q / uyi
+        kxy = 0.0
+        kyy = kxx
+        energy = 0.5 * q * uyi * t * t
+        sliding = 0
+    fx = kr * dx + q * zx
+    fy = kr * dy + q * zy
+    energy += 0.5 * kr * (dx * dx + dy * dy)
+    r = np.sqrt(dx * dx + dy * dy)
+    contact = 0
+    if r > gap:  # restrainer: k_0·(r − g) radially, tangent k_0·((1 − g/r)·I + (g/r)·e eᵀ)
+        ex, ey = dx / r, dy / r
+        over = r - gap
+        fx += ks * over * ex
+        fy += ks * over * ey
+        a = ks * gap / r
+        kxx += ks - a + a * ex * ex
+        kxy += a * ex * ey
+        kyy += ks - a + a * ey * ey
+        energy += 0.5 * ks * over * over
+        contact = 1
+    return fx, fy, kxx, kxy, kyy, energy, zx, zy, sliding, contact
+
+
+@njit(cache=True, inline="always")
+def _committed(p, i, s, dux, duy):
+    """Series element ``i``'s compliance (cxx, cxy, cyy) [in/kip] for going on from the committed
+    state as it was (sliding on along its z if it slides and the bearing moves on along z,
+    sticking otherwise): the solve's predictor."""
+    b = _E0 + 4 * i
+    kr, q, uyi, gap, ks = p[b], p[b + 1], p[b + 2], p[b + 3], p[_K0]
+    dx, dy, zx, zy = s[2 * i], s[2 * i + 1], s[6 + 2 * i], s[7 + 2 * i]
+    g = q / uyi
+    kxx, kxy, kyy = kr + g, 0.0, kr + g
+    if zx * zx + zy * zy >= 1.0 - 1e-12 and zx * dux + zy * duy > 0.0:
+        kxx -= g * zx * zx
+        kxy -= g * zx * zy
+        kyy -= g * zy * zy
+    r = np.sqrt(dx * dx + dy * dy)
+    if r > gap:
+        ex, ey = dx / r, dy / r
+        a = ks * gap / r
+        kxx += ks - a + a * ex * ex
+        kxy += a * ex * ey
+        kyy += ks - a + a * ey * ey
+    return _inverse(kxx, kxy, kyy)
+
+
+@njit(cache=True, inline="always")
+def _inverse(kxx, kxy, kyy):
+    """The inverse of the symmetric 2×2 matrix [[kxx, kxy], [kxy, kyy]]."""
+    det = kxx * kyy - kxy * kxy
+    return kyy / det, -kxy / det, kxx / det
+
+
+# ---- the series solve (the plan element; one axis is its y = 0 case) -----------------------------
+
+
+@njit(cache=True)
+def series_solve(p, s, ux, uy):
+    """The series state at the trial (ux, uy) [in] from the committed state ``s`` (not modified).
+
+    Returns (Fx, Fy, Kxx, Kxy, Kyy, d_1x, d_1y, d_2x, d_2y, d_3x, d_3y, z_1x, z_1y, z_2x, z_2y,
+    z_3x, z_3y, iterations, branch): the force [kip], the consistent tangent [kip/in], the
+    internal displacements [in] and hysteretic vectors, the Newton iterations, and the branch
+    code Σ_i (sliding_i·2^i + contact_i·2^(3+i)). NaN force and tangent if Newton failed."""
+    # predictor: each element goes on as it was (sliding on along z, sticking), the increment
+    # split by those compliances
+    dux, duy = ux - s[0] - s[2] - s[4], uy - s[1] - s[3] - s[5]
+    p1, q1, r1 = _committed(p, 0, s, dux, duy)
+    p2, q2, r2 = _committed(p, 1, s, dux, duy)
+    p3, q3, r3 = _committed(p, 2, s, dux, duy)
+    kxx, kxy, kyy = _inverse(p1 + p2 + p3, q1 + q2 + q3, r1 + r2 + r3)
+    gx, gy = kxx * dux + kxy * duy, kxy * dux + kyy * duy
+    d1x, d1y = s[0] + p1 * gx + q1 * gy, s[1] + q1 * gx + r1 * gy
+    d2x, d2y = s[2] + p2 * gx + q2 * gy, s[3] + q2 * gx + r2 * gy
+    d3x, d3y = ux - d1x - d2x, uy - d1y - d2y
+    f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = _element(p, 0, s, d1x, d1y)
+    f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = _element(p, 1, s, d2x, d2y)
+    f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = _element(p, 2, s, d3x, d3y)
+    energy = e1 + e2 + e3
+    tight = TOLERANCE * (np.sqrt(ux * ux + uy * uy) + p[_SCALE])
+    size = np.inf
+    fx = fy = kxx = kxy = kyy = np.nan
+    iterations = 0
+    for iterations in range(1, MAX_ITERATIONS + 1):
+        # Newton's step of the constrained minimum: F = (Σ C_i)⁻¹ Σ C_i f_i, Δd_i = C_i (F − f_i)
+        p1, q1, r1 = _inverse(a1, b1, c1)
+        p2, q2, r2 = _inverse(a2, b2, c2)
+        p3, q3, r3 = _inverse(a3, b3, c3)
+        kxx, kxy, kyy = _inverse(p1 + p2 + p3, q1 + q2 + q3, r1 + r2 + r3)
+        gx = (p1 * f1x + q1 * f1y) + (p2 * f2x + q2 * f2y) + (p3 * f3x + q3 * f3y)
+        gy = (q1 * f1x + r1 * f1y) + (q2 * f2x + r2 * f2y) + (q3 * f3x + r3 * f3y)
+        fx = kxx * gx + kxy * gy
+        fy = kxy * gx + kyy * gy
+        s1x, s1y = p1 * (fx - f1x) + q1 * (fy - f1y), q1 * (fx - f1x) + r1 * (fy - f1y)
+        s2x, s2y = p2 * (fx - f2x) + q2 * (fy - f2y), q2 * (fx - f2x) + r2 * (fy - f2y)
+        size = max(abs(s1x), abs(s1y), abs(s2x), abs(s2y), abs(s1x + s2x), abs(s1y + s2y))
+        if size <= tight or not size < np.inf:  # converged, or a NaN or infinite trial
+            break
+        # Armijo backtracking on Φ along the step (slope Σ f_i·Δd_i < 0, with Δd_3 = −Δd_1 − Δd_2)
+        slope = (f1x - f3x) * s1x + (f1y - f3y) * s1y + (f2x - f3x) * s2x + (f2y - f3y) * s2y
+        alpha = 1.0
+        for _ in range(40):
+            n1x, n1y = d1x + alpha * s1x, d1y + alpha * s1y
+            n2x, n2y = d2x + alpha * s2x, d2y + alpha * s2y
+            n3x, n3y = ux - n1x - n2x, uy - n1y - n2y
+            g1 = _element(p, 0, s, n1x, n1y)
+            g2 = _element(p, 1, s, n2x, n2y)
+            g3 = _element(p, 2, s, n3x, n3y)
+            trial = g1[5] + g2[5] + g3[5]
+            if trial <= energy + 1e-4 * alpha * slope + 1e-15 * abs(energy):  # (rounding of Φ)
+                break
+            alpha *= 0.5
+        d1x, d1y, d2x, d2y, d3x, d3y = n1x, n1y, n2x, n2y, n3x, n3y
+        f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = g1
+        f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = g2
+        f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = g3
+        energy = trial
+    if not size <= ACCEPT * (np.sqrt(ux * ux + uy * uy) + p[_SCALE]):  # (tight < this)
+        fx = fy = kxx = kxy = kyy = np.nan
+    branch = s1 + 2 * s2 + 4 * s3 + 8 * k1 + 16 * k2 + 32 * k3
+    return (fx, fy, kxx, kxy, kyy, d1x, d1y, d2x, d2y, d3x, d3y,
+            z1x, z1y, z2x, z2y, z3x, z3y, float(iterations), float(branch))
+
+
+@njit(cache=True, inline="always")
+def _store(s, r):
+    """Commit the internal state of a :func:`series_solve` result ``r`` into ``s``."""
+    for j in range(12):
+        s[j] = r[5 + j]
+
+
+# ---- in plan ------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def plan_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
+    """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` [kip·s/in] (2, 2), written in
+    place, at the trial (ux, uy) [in] from the committed state ``s`` (not modified). The path
+    arguments (u0x, u0y, v0x, v0y, tau) are not used: one return along the chord (module
+    docstring); velocities do not enter (constant friction, c = 0)."""
+    r = series_solve(p, s, ux, uy)
+    f[0] = r[0]
+    f[1] = r[1]
+    k[0, 0] = r[2]
+    k[0, 1] = r[3]
+    k[1, 0] = r[3]
+    k[1, 1] = r[4]
+    c[0, 0] = 0.0
+    c[0, 1] = 0.0
+    c[1, 0] = 0.0
+    c[1, 1] = 0.0
+
+
+@njit(cache=True)
+def plan_commit(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
+    """Advance the committed state ``s`` in place to the converged (ux, uy) [in] (the path
+    arguments are not used, as in :func:`plan_trial`)."""
+    _store(s, series_solve(p, s, ux, uy))
+
+
+@njit(cache=True)
+def plan_energy(p, s):
+    """Recoverable energy [kip·in] at the committed state (module docstring)."""
+    energy = 0.0
+    for i in range(3):
+        b = _E0 + 4 * i
+        kr, q, uyi, gap = p[b], p[b + 1], p[b + 2], p[b + 3]
+        dx, dy, zx, zy = s[2 * i], s[2 * i + 1], s[6 + 2 * i], s[7 + 2 * i]
+        r = np.sqrt(dx * dx + dy * dy)
+        energy += 0.5 * kr * r * r + 0.5 * q * uyi * (zx * zx + zy * zy)
+        if r > gap:
+            energy += 0.5 * p[_K0] * (r - gap) * (r - gap)
+    return energy
+
+
+@njit(cache=True)
+def plan_branch(p, s, ux, uy):
+    """The branch of the trial (ux, uy) [in] from the committed state: which elements slide and
+    which touch their restrainer, Σ_i (sliding_i·2^i + contact_i·2^(3+i)) (the solver lands a
+    step where it changes)."""
+    return int(series_solve(p, s, ux, uy)[18])
+
+
+@njit(cache=True)
+def plan_turn_direction(s):
+    """The committed friction direction z_i of the first sliding element (on the unit circle),
+    (0, 0) when none slides: a velocity along it that turns negative unloads the bearing (all
+    elements carry the same force, so they all stop sliding when it turns back)."""
+    for i in range(3):
+        zx, zy = s[6 + 2 * i], s[7 + 2 * i]
+        if zx * zx + zy * zy >= 1.0 - 1e-9:
+            return zx, zy
+    return 0.0, 0.0
+
+
+# ---- on one axis: the plan element with u_y = v_y = 0 -------------------------------------------
+
+
+@njit(cache=True)
+def axis_trial(p, s, u, v):
+    """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at the trial (u [in], v [in/s]) from the
+    committed state ``s`` (not modified): the plan element's x row at (u, 0)."""
+    r = series_solve(p, s, u, 0.0)
+    return r[0], r[2], 0.0
+
+
+@njit(cache=True)
+def axis_commit(p, s, u, v):
+    """Advance the committed state ``s`` in place to the converged (u, v) (plan at (u, 0))."""
+    _store(s, series_solve(p, s, u, 0.0))
+
+
+@njit(cache=True)
+def axis_energy(p, s):
+    """Recoverable energy [kip·in] at the committed state (the plan element's)."""
+    return plan_energy(p, s)
+
+
+# ---- the dataclass ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class TripleFrictionPendulum:
+    """Triple friction-pendulum bearing, on one axis and in plan (one class: the 1D bearing is the
+    plan bearing on one axis). Defaults: a typical bearing, see below.
+
+    Parameters (OpenSees' notation; module docstring for Fenz & Constantinou's)
+    ----------
+    W : float
+        Weight carried by the bearing [kip], > 0 (default 33: the paper building's bearing).
+    L1 : float
+        Effective radius R − h of each inner surface [in], > 0.
+    L2, L3 : float
+        Effective radii of the two outer surfaces [in], > L1.
+    d1 : float
+        Displacement capacity of the inner slider on each inner surface [in], > 0.
+    d2, d3 : float
+        Displacement capacities on the outer surfaces of L2 and L3 [in], > 0.
+    mu1 : float
+        Friction coefficient of the inner surfaces [-], > 0.
+    mu2, mu3 : float
+        Friction coefficients of the outer surfaces of L2 and L3 [-], μ1 < μ2 ≤ μ3 < 1.
+    u_y : float
+        Displacement at which the bearing starts to slide [in], > 0 (≈ 0.01: each series
+        element's sticking stiffness is 3·μ1·W/u_y), below 3·μ1·min(2·L1, L2 − L1, L3 − L1).
+
+    The defaults are a typical bearing: inner L1 = 12 in and outer L2 = L3 = 88 in (the
+    isolated period of the large-displacement regime III, 2π·sqrt((L2 + L3)/g), is 4.2 s),
+    capacities d1 = 2 in and d2 = d3 = 16 in (an ultimate displacement of 36 in), and frictions
+    μ1 = 0.012 < μ2 = 0.052 < μ3 = 0.12 far enough apart for the five regimes to be distinct:
+    u* = 0.96 in, u** = 7.76 in, u_dr1 = 27.8 in, u_dr4 = 34.6 in.
+    """
+
+    W: float = 33.0
+    L1: float = 12.0
+    L2: float = 88.0
+    L3: float = 88.0
+    d1: float = 2.0
+    d2: float = 16.0
+    d3: float = 16.0
+    mu1: float = 0.012
+    mu2: float = 0.052
+    mu3: float = 0.12
+    u_y: float = 0.01
+
+    def __post_init__(self):
+        _checks.positive("W", self.W, "[kip]")
+        for name in ("L1", "L2", "L3"):
+            _checks.positive(name, getattr(self, name), "[in]")
+        for name in ("L2", "L3"):
+            if not getattr(self, name) > self.L1:
+                raise ValueError(
+                    f"{name} = {getattr(self, name)!r} [in]: must be > L1 = {self.L1!r} (the "
+                    "outer surfaces are the flatter ones: their series element's radius is "
+                    f"{name} − L1).")
+        for name in ("d1", "d2", "d3"):
+            _checks.positive(name, getattr(self, name), "[in]")
+        for name in ("mu1", "mu2", "mu3"):
+            _checks.in_range(name, getattr(self, name), "[-]", 0.0, 1.0,
+                             lo_open=True, hi_open=True)
+        if not self.mu1 < self.mu2:
+            raise ValueError(f"mu2 = {self.mu2!r} [-]: must be > mu1 = {self.mu1!r} (the inner "
+                             "slider is the least rough: it slides first).")
+        if not self.mu2 <= self.mu3:
+            raise ValueError(f"mu3 = {self.mu3!r} [-]: must be >= mu2 = {self.mu2!r} (name the "
+                             "outer surface of lower friction L2, d2, mu2).")
+        _checks.positive("u_y", self.u_y, "[in]")
+        limit = 3.0 * self.mu1 * min(2.0 * self.L1, self.L2 - self.L1, self.L3 - self.L1)
+        if not self.u_y < limit:
+            raise ValueError(
+                f"u_y = {self.u_y!r} [in]: must be < 3·mu1·min(2·L1, L2 − L1, L3 − L1) = "
+                f"{limit!r} (the series elements' sticking stiffness 3·mu1·W/u_y must exceed "
+                "their pendulum stiffness); use a smaller u_y (≈ 0.01 in).")
+
+    # ---- derived quantities (the series model) ----
+
+    @property
+    def radii(self) -> tuple:
+        """The series elements' radii L̄_i [in]: 2·L1, L2 − L1, L3 − L1."""
+        return (2.0 * self.L1, self.L2 - self.L1, self.L3 - self.L1)
+
+    @property
+    def frictions(self) -> tuple:
+        """The series elements' friction coefficients [-]: μ1, μ2, μ3."""
+        return (self.mu1, self.mu2, self.mu3)
+
+    @property
+    def gaps(self) -> tuple:
+        """The series elements' gaps g_i [in] (their restrainers; module docstring)."""
+        m = min(self.d2 / self.L2, self.d3 / self.L3)
+        return (2.0 * (self.d1 + self.L1 * m), self.d2 * (1.0 - self.L1 / self.L2),
+                self.d3 * (1.0 - self.L1 / self.L3))
+
+    @property
+    def sticking_stiffness(self) -> float:
+        """k_0 = 3·μ1·W/u_y [kip/in]: each series element's stiffness while it sticks, and its
+        restrainer's."""
+        return 3.0 * self.mu1 * self.W / self.u_y
+
+    @property
+    def element_yield_displacements(self) -> tuple:
+        """u_y,i = μ_i·W/(k_0 − W/L̄_i) [in]: each series element's friction yield displacement."""
+        k0 = self.sticking_stiffness
+        return tuple(mu * self.W / (k0 - self.W / r) for mu, r in zip(self.frictions, self.radii))
+
+    @property
+    def yield_deformation(self) -> float:
+        """Displacement at which the bearing starts to slide, from rest [in]: 3·u_y,1 (three
+        elements of stiffness k_0 in series until the inner one slides), ≈ u_y."""
+        return 3.0 * self.element_yield_displacements[0]
+
+    @property
+    def capacity(self) -> float:
+        """Ultimate displacement [in]: 2·d1 + d2 + d3 − L1·|d2/L2 − d3/L3|, the sum of the gaps,
+        where the inner slider reaches its restrainer (module docstring: OpenSees' formula when
+        d3/L3 ≤ d2/L2)."""
+        return float(sum(self.gaps))
+
+    def params(self) -> np.ndarray:
+        k0 = self.sticking_stiffness
+        p = [self.W, self.u_y, k0]
+        for r, mu, uyi, gap in zip(self.radii, self.frictions, self.element_yield_displacements,
+                                   self.gaps):
+            p += [self.W / r, mu * self.W, uyi, gap]
+        p.append(self.capacity)
+        return np.array(p, dtype=np.float64)
+
+    def initial_state(self) -> np.ndarray:
+        """Virgin committed state ``s`` on one axis (the plan state): at rest, centred, z = 0."""
+        return np.zeros(N_STATE_AXIS)
+
+    def initial_state_axis(self) -> np.ndarray:
+        """Virgin committed state ``s`` on one axis: at rest, centred, z = 0."""
+        return np.zeros(N_STATE_AXIS)
+
+    def initial_state_plan(self) -> np.ndarray:
+        """Virgin committed state ``s`` in plan: at rest, centred, z = 0."""
+        return np.zeros(N_STATE_PLAN)
+
+    @property
+    def code(self):
+        """The material code of this bearing on one axis (:mod:`femoat.bearings.registry`)."""
+        return registry.axis_code(self)
+
+
+AXIS_CLASS = TripleFrictionPendulum
+"""The bearing on one axis (the isolator of a 1D building)."""
+
+PLAN_CLASS = TripleFrictionPendulum
+"""The bearing in plan (the isolator of a plan building): the same class."""
+
+
+# ---- the OpenSees twin -------------------------------------------------------------------------
+
+OPENSEES_AXIAL_LOAD = True
+"""The plan twin takes its normal force from its vertical material: the j node's vertical DOF is
+free and a static gravity step puts N = W on it before the analysis (:func:`opensees_plan_element`).
+There is no 1D twin (OpenSees' TripleFrictionPendulum is a 3D element, not a uniaxial
+material): check the bearing in plan."""
+
+AXIAL_STIFFNESS = 1.0e6
+"""Stiffness [kip/in, kip·in/rad] of the twin's vertical (compression) material and of its
+rotational ones."""
+
+
+def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
+    """The openseespy calls that build ``bearing``'s twin, OpenSees' ``TripleFrictionPendulum``,
+    between nodes ``i_node`` (below) and ``j_node`` (above) of a ``-ndm 3 -ndf 6`` model: shear in
+    global x and y, axis global z. Returns (commands, next_mat_tag): commands as tuples
+    ``("function name", *args)``; three ``Coulomb`` friction models and four ``Elastic``
+    materials take the tags mat_tag, mat_tag + 1, ... (friction models and materials are
+    separate name spaces in OpenSees; one counter keeps both free of clashes).
+
+    Axial load: the element's friction and pendulum forces are proportional to its axial force
+    N from the vertical material (not to ``bearing.W``, which only seeds its first trial), so the
+    model must carry N = W: ``j_node`` free in z with a load −W in z on it (a static step before
+    the analysis, then held constant: :data:`OPENSEES_AXIAL_LOAD`).
+
+    The twin equals this module's series model (module docstring): OpenSees' friction inputs
+    are μ_i·k_0/(k_0 − W/L̄_i) and its u_y is u_y·μ1_OS/μ1, which make its hardening elements
+    the spring plus friction disk of stiffness k_0 here; its outer surfaces are listed so that
+    the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3).
+
+    Its tension stiffness kvt = 1 kip/in and minimum axial force minFv = 0.1 kip only act on
+    uplift, which this module does not model.
+
+    ``tol`` is the element's convergence tolerance, relative to the step: at 1e-5 a step that
+    crosses a transition can leave its internal split off by 1e-5 of the step (a lasting
+    offset of ~1e-9 of the force on one axis); 1e-7 to 1e-9 agree with this module to rounding
+    on one axis; 1e-11 stalls its iteration (a wrong state, a hundred times slower). Its first
+    step from rest must stay below about 3·u_y (a larger one ends in a wrong state).
+    """
+    b = bearing
+    k0 = b.sticking_stiffness
+    outer = [(b.L2, b.d2, b.mu2), (b.L3, b.d3, b.mu3)]
+    if b.d3 / b.L3 > b.d2 / b.L2:
+        outer.reverse()
+    (l2, d2, mu2), (l3, d3, mu3) = outer
+    radii = (2.0 * b.L1, l2 - b.L1, l3 - b.L1)
+    mus = [mu * k0 / (k0 - b.W / r) for mu, r in zip((b.mu1, mu2, mu3), radii)]
+    u_y = b.u_y * mus[0] / b.mu1
+    friction = [mat_tag, mat_tag + 1, mat_tag + 2]
+    vertical, rot_z, rot_x, rot_y = mat_tag + 3, mat_tag + 4, mat_tag + 5, mat_tag + 6
+    commands = [("frictionModel", "Coulomb", tag, mu) for tag, mu in zip(friction, mus)]
+    commands += [("uniaxialMaterial", "Elastic", tag, AXIAL_STIFFNESS)
+                 for tag in (vertical, rot_z, rot_x, rot_y)]
+    commands.append(("element", "TripleFrictionPendulum", ele_tag, i_node, j_node, *friction,
+                     vertical, rot_z, rot_x, rot_y, b.L1, l2, l3, b.d1, d2, d3, b.W, u_y,
+                     1.0, 0.1, tol))
+    return commands, mat_tag + 7
