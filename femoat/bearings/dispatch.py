@@ -28,11 +28,22 @@ from femoat.bearings.lead_rubber import (
     plan_branch as _plan_branch_1,
     plan_turn_direction as _plan_turn_direction_1,
 )
+from femoat.bearings.triple_friction_pendulum import (
+    axis_trial as _axis_trial_2,
+    axis_commit as _axis_commit_2,
+    axis_energy as _axis_energy_2,
+    plan_trial as _plan_trial_2,
+    plan_commit as _plan_commit_2,
+    plan_energy as _plan_energy_2,
+    plan_branch as _plan_branch_2,
+    plan_turn_direction as _plan_turn_direction_2,
+)
 from femoat.compilation.jit import njit
 
 KINDS = (
     'femoat.bearings.friction_pendulum',
     'femoat.bearings.lead_rubber',
+    'femoat.bearings.triple_friction_pendulum',
 )
 """The kinds this dispatcher was generated for."""
 
@@ -46,6 +57,8 @@ def bearing_axis_trial(kind, p, s, u, v):
         return _axis_trial_0(p, s, u, v)
     if kind == 1:
         return _axis_trial_1(p, s, u, v)
+    if kind == 2:
+        return _axis_trial_2(p, s, u, v)
     return (np.nan, np.nan, np.nan)
 
 
@@ -58,6 +71,9 @@ def bearing_axis_commit(kind, p, s, u, v):
     if kind == 1:
         _axis_commit_1(p, s, u, v)
         return
+    if kind == 2:
+        _axis_commit_2(p, s, u, v)
+        return
 
 
 @njit(cache=True)
@@ -67,6 +83,8 @@ def bearing_axis_energy(kind, p, s):
         return _axis_energy_0(p, s)
     if kind == 1:
         return _axis_energy_1(p, s)
+    if kind == 2:
+        return _axis_energy_2(p, s)
     return np.nan
 
 
@@ -79,6 +97,9 @@ def bearing_plan_trial(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k
     if kind == 1:
         _plan_trial_1(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c)
         return
+    if kind == 2:
+        _plan_trial_2(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c)
+        return
 
 
 @njit(cache=True)
@@ -90,6 +111,9 @@ def bearing_plan_commit(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
     if kind == 1:
         _plan_commit_1(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
         return
+    if kind == 2:
+        _plan_commit_2(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
+        return
 
 
 @njit(cache=True)
@@ -99,6 +123,8 @@ def bearing_plan_energy(kind, p, s):
         return _plan_energy_0(p, s)
     if kind == 1:
         return _plan_energy_1(p, s)
+    if kind == 2:
+        return _plan_energy_2(p, s)
     return np.nan
 
 
@@ -109,6 +135,8 @@ def bearing_plan_branch(kind, p, s, ux, uy):
         return _plan_branch_0(p, s, ux, uy)
     if kind == 1:
         return _plan_branch_1(p, s, ux, uy)
+    if kind == 2:
+        return _plan_branch_2(p, s, ux, uy)
     return -1
 
 
@@ -119,4 +147,6 @@ def bearing_plan_turn_direction(kind, s):
         return _plan_turn_direction_0(s)
     if kind == 1:
         return _plan_turn_direction_1(s)
+    if kind == 2:
+        return _plan_turn_direction_2(s)
     return (0.0, 0.0)

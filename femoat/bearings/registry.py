@@ -26,6 +26,7 @@ from pathlib import Path
 KINDS = (
     "femoat.bearings.friction_pendulum",
     "femoat.bearings.lead_rubber",
+    "femoat.bearings.triple_friction_pendulum",
 )
 """The bearing kinds' modules, in code order (append only)."""
 

@@ -8,13 +8,17 @@ STUDIES = {
     "bidirectional": "the paper building under the FEMA P695 far-field pairs at the MCE: each "
     "record's components alone (1D) against the pair in plan (2D, at 0 deg and the worst of six "
     "angles), for the 5 contact laws x 2 walls",
+    "isolators": "the paper building on a single friction pendulum, a triple friction pendulum "
+    "and a lead-rubber bearing designed for the same MCE displacement (ASCE 7-16 Ch. 17), in the "
+    "concrete moat (law H) under the FEMA P695 far-field pairs at the MCE, 1D and in plan",
 }
 
 
 def add_parser(sub):
     p = sub.add_parser(
         "study",
-        help="run a study built on suites (bidirectional: 1D against 2D pounding at the MCE)",
+        help="run a study built on suites (bidirectional: 1D against 2D pounding at the MCE; "
+        "isolators: FP, TFP and LRB of equal MCE displacement)",
         description="Run (or resume) a study's suites into OUT and print its table; the table "
         "is also written to OUT/table.csv and OUT/table.markdown. Studies: "
         + "; ".join(f"{k}: {v}" for k, v in STUDIES.items()) + ".",
@@ -27,7 +31,7 @@ def add_parser(sub):
                    help="local Dask worker processes, one thread each (default: one per core)")
     p.add_argument("--serial", action="store_true", help="run in this process, without Dask")
     p.add_argument("--quick", action="store_true",
-                   help="a small variant: three pairs, the first 12 s of each record, two laws")
+                   help="a small variant: three pairs (bidirectional: two laws)")
     p.add_argument("--overwrite", action="store_true",
                    help="delete the results of a different definition in --out (e.g. after "
                    "femoat changed)")
@@ -35,7 +39,9 @@ def add_parser(sub):
 
 
 def run(args):
-    from femoat.studies.bidirectional import run_study
+    import importlib
+
+    run_study = importlib.import_module(f"femoat.studies.{args.name}").run_study
 
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers {args.workers}: give a number of processes >= 1.")
@@ -49,7 +55,8 @@ def run(args):
               "same command to resume", file=sys.stderr)
         return 130
     print(markdown, end="")
+    figure = " and the figure isolators.png" if args.name == "isolators" else ""
     print(f"femoat study {args.name}: the table in {out / 'table.markdown'} and "
-          f"{out / 'table.csv'}; the run tables in {out / '1d'} and {out / '2d'} "
+          f"{out / 'table.csv'}{figure}; the run tables in {out / '1d'} and {out / '2d'} "
           "(femoat.suite.load_table)")
     return 0
