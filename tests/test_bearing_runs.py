@@ -163,7 +163,12 @@ def test_a_plan_run_matches_its_opensees_twin(key):
     m = _first(paper_motion(), 8.0)
     pair = RecordPair(m, GroundMotion(-0.6 * m.accel_g[::-1], m.dt, name="y"), angle=30.0)
     model = PlanModel(building=PlanBuilding(isolator=registry.by_key(key).PLAN_CLASS()))
-    ours, twin = run(model, pair), opensees_plan_run(model, pair, 2e-4, tol=1e-8)
+    # the triple pendulum's plan trial returns once along the chord (a first-order friction
+    # direction on a curved orbit: 1.2e-3 off converged femoat at the default rtol, 6e-4 at
+    # 1e-6, measured), so it is checked at rtol 1e-6
+    integrator = Integrator(method="newmark", rtol=1e-6 if key == "tfp" else 1e-5)
+    ours = run(model, pair, integrator=integrator)
+    twin = opensees_plan_run(model, pair, 2e-4, tol=1e-8)
     sides = [w.side for w in model.walls]
     tags = {"+x": "px", "-x": "mx", "+y": "py", "-y": "my"}
     assert list(twin["peaks"]["impacts"]) == [ours.peaks[f"impacts_{tags[s]}"] for s in sides]
