@@ -100,8 +100,10 @@ def isolator_table(bearing):
     from femoat.bearings import registry
 
     key = registry.module(registry.kind_of(bearing)).KEY
-    return {"type": key, **{f.name: getattr(bearing, f.name) for f in dataclasses.fields(bearing)
-                            if np.isfinite(getattr(bearing, f.name))}}
+    values = {f.name: getattr(bearing, f.name) for f in dataclasses.fields(bearing)}
+    # left out: what a scenario cannot write (None: mu_fast; inf: no capacity) takes the default
+    return {"type": key, **{k: float(v) for k, v in values.items()
+                            if v is not None and np.isfinite(v)}}
 
 
 def definitions(quick=False):
@@ -281,7 +283,7 @@ def figure(table, path):
             ax.bar(x + (j - 0.5) * 0.38, vals, width=0.36, label=CASES[case])
         ax.set_xticks(x, [k.upper() for k in ISOLATORS])
         ax.set_ylabel(label)
-    axes[0].legend(frameon=False)
+    axes[0].legend(frameon=False, loc="lower right")
     fig.suptitle("Paper building on three isolators of equal D_M, FEMA P695 far-field pairs "
                  "at the MCE, concrete moat (law H)")
     with atomic_path(path) as tmp:
