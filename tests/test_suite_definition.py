@@ -201,3 +201,23 @@ def test_a_binary_or_mistyped_suite_file_names_itself(tmp_path):
 
     with pytest.raises(ValueError, match=r"\[solver\] max_newton"):
         build_variation({"solver": {"max_newton": 3.5}})
+
+
+def test_a_suite_varies_a_bearing_kind_s_own_parameters(tmp_path):
+    # [building.isolator] type = "tfp" and a variation of its mu2: two models whose isolators
+    # differ in mu2 only; a key of another kind (the pendulum's R) is refused for the TFP by
+    # name, as its dataclass has no such field
+    from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+    from femoat.suite.model import build_variation
+    from femoat.suite.variations import apply
+
+    text = GOOD + '[building.isolator]\ntype = "tfp"\n[variations]\n' \
+        '"building.isolator.mu2" = [0.04, 0.06]\n'
+    suite = load_suite(_write(tmp_path, text))
+    isos = [build_variation(apply(suite.tables, c)).pounding.building.isolator
+            for c in suite.combos]
+    assert isos == [TripleFrictionPendulum(mu2=0.04), TripleFrictionPendulum(mu2=0.06)]
+    bad = GOOD + '[building.isolator]\ntype = "tfp"\n[variations]\n' \
+        '"building.isolator.R" = [20.0, 30.0]\n'
+    with pytest.raises(ValueError, match="R"):
+        load_suite(_write(tmp_path, bad))
