@@ -21,6 +21,15 @@ is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
     where it changes) and ``plan_turn_direction(s) -> (dx, dy)``: the committed direction along
     which a velocity turning negative unloads the bearing ((0, 0): none).
 
+and, for its OpenSees twins (:mod:`femoat.opensees`), ``opensees_plan_element(bearing, ele_tag,
+i_node, j_node, mat_tag) -> (commands, next_mat_tag)`` (the 3D element between two nodes, shear in
+global x, y) with ``OPENSEES_AXIAL_LOAD`` (whether it needs the normal force W from a gravity
+step), and where OpenSees has a uniaxial twin ``opensees_axis_material(bearing, mat_tag)`` (its
+last material is the bearing; without it the 1D twin is the 3D one driven along x).
+
+The kinds: ``fp`` :mod:`~femoat.bearings.friction_pendulum`, ``lrb``
+:mod:`~femoat.bearings.lead_rubber`, ``tfp`` :mod:`~femoat.bearings.triple_friction_pendulum`.
+
 Along one axis the plan kernels equal the one-axis kernels (each kind's tests hold it). Energy:
 the recoverable energy at the committed state; the loop integrates the work, their difference is
 the bearing's dissipation.
