@@ -51,6 +51,28 @@ def test_a_kind_that_misses_part_of_the_contract_is_refused_by_name():
         sys.path.remove(str(TESTS))
 
 
+def test_a_kind_written_in_a_test_file_meets_the_contract_and_gets_its_branch():
+    # the capped spring provides every name of the contract, and the dispatcher generated
+    # with it appended gives it the next code: one more `if kind == n` branch per kernel, the
+    # committed kinds' branches unchanged (what register() loads in a fresh process: the
+    # slow tests below run it through the dispatcher and the whole loop)
+    sys.path.insert(0, str(TESTS))
+    try:
+        mod = registry.check_kind("bearing_kinds.capped_spring")
+    finally:
+        sys.path.remove(str(TESTS))
+    n = len(registry.KINDS)
+    names = (*registry.KINDS, "bearing_kinds.capped_spring")
+    source = registry.generate(names)
+    for fn, (own, args, _) in registry.KERNELS.items():
+        body = source.split(f"def {fn}(kind, ")[1].split("\n\n\n")[0]
+        assert f"    if kind == {n}:\n" in body, fn
+        assert f"_{own}_{n}({args})" in body.split(f"if kind == {n}:")[1].splitlines()[1], fn
+    committed = registry.generate()
+    assert all(line in source for line in committed.splitlines() if "if kind ==" in line)
+    assert mod.KEY not in registry.keys()  # not registered in this process
+
+
 def _in_process_with_kind(code, tmp_path):
     """Run ``code`` in a new process that registered the capped spring first; its JSON output."""
     prelude = (
@@ -66,8 +88,9 @@ def _in_process_with_kind(code, tmp_path):
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+@pytest.mark.slow
 def test_a_kind_registered_from_a_test_file_runs_through_the_dispatcher(tmp_path):
-    # The quick half (only the dispatcher's kernels compile): the capped spring's kernels,
+    # The dispatcher alone (its kernels compile for every kind, ~35 s): the capped spring's kernels,
     # reached through femoat.bearings.dispatch with the new kind's code, on one cycle of
     # amplitude u0 = 0.5 in at k = 1.1, F = 1.98, k_f = 198 kip/in (u_y = 0.01 in):
     # the loop's area is the cap's alone, 4·F·(u0 − u_y) = 4·1.98·0.49 = 3.8808 kip·in; the

@@ -39,8 +39,8 @@ def test_effective_properties_of_the_friction_pendulum_are_its_closed_forms(d):
     k, beta = effective_properties(FP, d)
     k_ref, beta_ref = _fp_closed_form(d)
     assert k == pytest.approx(k_ref, rel=1e-12)  # the tip of the loop is exact
-    # the trapezoidal loop cuts each reversal's corner within one increment 4D/4000: 2e-5
-    assert beta == pytest.approx(beta_ref, rel=3e-5)
+    # the trapezoidal loop cuts each reversal's corner within one increment 4D/2000: 1e-4
+    assert beta == pytest.approx(beta_ref, rel=1e-4)
 
 
 def test_the_mce_displacement_is_the_fixed_point_of_eq_17_5_1():
@@ -52,11 +52,13 @@ def test_the_mce_displacement_is_the_fixed_point_of_eq_17_5_1():
         return G * 0.45 * t / (4 * math.pi ** 2 * damping_coefficient(beta)) - d
 
     d_ref = brentq(excess, 0.1, 50.0, xtol=1e-12)
+    # (β within 1.2e-4 of its 0.181, B_M = 1.2 + 3·(β − 0.1) there: B_M within 5e-5, and
+    # D ∝ 1/B_M: D within 1e-4)
     d, t, beta = mce_displacement(FP, 33.0, 0.45)
     assert d == pytest.approx(d_ref, rel=1e-4)
     k_ref, beta_ref = _fp_closed_form(d_ref)
     assert t == pytest.approx(2 * math.pi * math.sqrt(33.0 / (k_ref * G)), rel=1e-4)
-    assert beta == pytest.approx(beta_ref, rel=1e-4)
+    assert beta == pytest.approx(beta_ref, rel=2e-4)
 
 
 def test_a_bearing_is_tuned_to_a_target_displacement():
