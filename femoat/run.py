@@ -15,7 +15,7 @@ from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.ground_motions.pair import RecordPair
 from femoat.plan.model import PlanModel
-from femoat.plan.results import PlanRunResult
+from femoat.results.plan import PlanRunResult
 from femoat.results import RunResult, impact_rows
 from femoat.structure.pounding import PoundingModel
 from femoat.units import G
@@ -41,7 +41,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         Ground acceleration record (femoat.ground_motions), in g at interval dt [s]; for a
         PlanModel a :class:`~femoat.ground_motions.pair.RecordPair` (two components, applied
         together, turned by its angle). A plan run returns a
-        :class:`~femoat.plan.results.PlanRunResult`.
+        :class:`~femoat.results.plan.PlanRunResult`.
     integrator : Integrator or None
         Integration settings (default: Newmark average acceleration, rtol = 1e-5: every peak within 1e-3).
     extra_time : float

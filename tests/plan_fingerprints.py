@@ -44,7 +44,7 @@ def _exact(value):
 
 
 def fingerprint(result):
-    """The exact fingerprint of a :class:`~femoat.plan.results.PlanRunResult`."""
+    """The exact fingerprint of a :class:`~femoat.results.plan.PlanRunResult`."""
     st = result.meta["stats"]
     return dict(all_histories=_sha(*(getattr(result, k) for k in ARRAYS)),
                 **{k: int(st[k]) for k in STATS},

@@ -24,7 +24,7 @@ LAYERS = [
     # 4 time integration: the building solver, the single-impact solver
     ("femoat.integration", "femoat.impact"),
     # 5 runs and what they produce; the warm-up; the OpenSees twin
-    ("femoat.results", "femoat.plan.results", "femoat.collapse", "femoat.run",
+    ("femoat.results", "femoat.collapse", "femoat.run",
      "femoat.startup",
      "femoat.opensees"),
     # 6 figures and renderings (never imported by layers 0-5)

@@ -1,6 +1,6 @@
 """A plan run without history (``run(plan_model, pair, ..., history=False)``, what a suite does):
 its peaks come from the compiled loop's running peaks (femoat.integration.recording.peaks) and
-equal those read from the full history (femoat.plan.results), with the same steps, impact table,
+equal those read from the full history (femoat.results.plan), with the same steps, impact table,
 energy balance, collapse and runaway; its history accessors say why they have nothing; save and
 load keep it; running peaks that do not fit the model are refused."""
 
@@ -11,7 +11,7 @@ from femoat.collapse import CollapseCriteria
 from femoat.ground_motions import GroundMotion, RecordPair, fema_p695_pair
 from femoat.integration import Integrator
 from femoat.plan import PlanBuilding, PlanModel, rectangular_moat
-from femoat.plan.results import ARRAY_UNITS, PlanRunResult
+from femoat.results.plan import ARRAY_UNITS, PlanRunResult
 from femoat.plotting.plan_history import PlanHistory
 from femoat.run import run
 from femoat.structure.materials import Elastic

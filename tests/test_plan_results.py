@@ -1,4 +1,4 @@
-"""The result of a plan run (femoat.plan.results): peaks per direction and in plan from closed-form
+"""The result of a plan run (femoat.results.plan): peaks per direction and in plan from closed-form
 histories, the impact table per wall, save/load, bad input, and the OpenSees twin's run read the
 same way."""
 
@@ -10,7 +10,7 @@ from conftest import opensees_or_skip
 
 from femoat.ground_motions import GroundMotion, RecordPair, fema_p695_pair
 from femoat.plan import PlanModel, rectangular_moat
-from femoat.plan.results import ARRAY_UNITS, PlanRunResult, hermite_norm_max
+from femoat.results.plan import ARRAY_UNITS, PlanRunResult, hermite_norm_max
 from femoat.plotting.plan_history import PlanHistory
 from femoat.units import G
 
@@ -308,7 +308,7 @@ def test_newmark_rates_of_a_constant_acceleration_are_exact():
     # gives u₁ − u₀ = c(t₁² − t₀²)/2 = h·(c·t₀ + c·t₁)/2, so the rates read back from the
     # displacements are v = c·t (and from those, a = c), however many steps (the twin's
     # velocities are read this way: test_the_opensees_twin_read_as_a_plan_result).
-    from femoat.plan.results import _newmark_rate
+    from femoat.results.plan import _newmark_rate
 
     h, c = 0.01, np.array([3.0, -2.0])
     t = np.arange(1001) * h

@@ -44,7 +44,7 @@ def test_a_plan_run_writes_summary_csv_with_units_and_the_peaks(plan_run):
     assert all(h.endswith("]") for h in head if h != "record")
     assert float(row["angle [deg]"]) == 30.0 and float(row["scale [-]"]) == 1.5
     # the summary is run.npz's peaks: the same plan displacement and wall forces
-    from femoat.plan.results import PlanRunResult
+    from femoat.results.plan import PlanRunResult
 
     r = PlanRunResult.load(plan_run / "run.npz")
     assert float(row["peak_plan_base_displacement [in]"]) == pytest.approx(

@@ -160,10 +160,10 @@ def _render_wall(args):
 
 def _load_run(path):
     """A saved run: a plan run's file (it holds the bidirectional bearing's force) as a
-    :class:`~femoat.plan.results.PlanRunResult`, any other as a RunResult."""
+    :class:`~femoat.results.plan.PlanRunResult`, any other as a RunResult."""
     import numpy as np
 
-    from femoat.plan.results import PlanRunResult
+    from femoat.results.plan import PlanRunResult
     from femoat.results import RunResult
 
     try:
@@ -176,7 +176,7 @@ def _load_run(path):
 
 def _animate(result, gif, args):
     """The 1D animation of a RunResult, the top view of a plan run (walls flashing on impact)."""
-    from femoat.plan.results import PlanRunResult
+    from femoat.results.plan import PlanRunResult
 
     kw = dict(fps=args.fps, speed=args.speed, start=args.start, end=args.end, scale=args.scale,
               window_size=_size(args.size), max_frames=args.max_frames)

@@ -3,7 +3,7 @@
 The figures (:mod:`femoat.plotting.plan_figures`) and the top-view animation
 (:mod:`femoat.render.plan`) read only this object, so that any plan run can feed them: the
 OpenSees twin in 3D (:meth:`PlanHistory.from_opensees`) and any
-:class:`~femoat.plan.results.PlanRunResult` (:meth:`PlanHistory.from_result`).
+:class:`~femoat.results.plan.PlanRunResult` (:meth:`PlanHistory.from_result`).
 
 Conventions (docs/plan.md §2): plan axes x, y are the building's; ``base`` is the base mat's
 displacement relative to the ground; walls are named by their outward normal ("+x", "-x", "+y",
@@ -113,8 +113,8 @@ class PlanHistory:
 
     @classmethod
     def from_result(cls, result, title=""):
-        """The history of a plan run's :class:`~femoat.plan.results.PlanRunResult` (femoat's plan
-        solver or :meth:`~femoat.plan.results.PlanRunResult.from_opensees`)."""
+        """The history of a plan run's :class:`~femoat.results.plan.PlanRunResult` (femoat's plan
+        solver or :meth:`~femoat.results.plan.PlanRunResult.from_opensees`)."""
         return cls(time=result.time, base=result.base_displacement,
                    wall_force=result.contact_force, gaps=result.meta["gaps"],
                    sides=tuple(result.sides), title=title)

@@ -144,8 +144,8 @@ class Suite:
 def wall_keys(plan=None):
     """The wall keys of a table: a 1D suite's walls on the positive and negative side (pos,
     neg), a plan suite's +x, -x, +y, -y walls (px, mx, py, my:
-    :data:`femoat.plan.results.SIDE_KEYS`); ``plan`` None: both kinds."""
-    from femoat.plan.results import SIDE_KEYS
+    :data:`femoat.results.plan.SIDE_KEYS`); ``plan`` None: both kinds."""
+    from femoat.results.plan import SIDE_KEYS
 
     line, plan_keys = ("pos", "neg"), tuple(SIDE_KEYS.values())
     return {False: line, True: plan_keys, None: line + plan_keys}[plan]

@@ -510,11 +510,11 @@ def _checked_arrays(arrays, n, n_elements, n_walls, history=True):
     no history)."""
     if not isinstance(arrays, dict):
         raise ValueError("arrays must be a dict of numpy arrays named as "
-                         "femoat.plan.results.ARRAY_UNITS.")
+                         "femoat.results.plan.ARRAY_UNITS.")
     missing = [k for k in ARRAY_UNITS if k not in arrays]
     if missing:
         raise ValueError(f"arrays is missing {', '.join(repr(k) for k in missing)}: give every "
-                         "array of femoat.plan.results.ARRAY_UNITS (an unrecorded channel as "
+                         "array of femoat.results.plan.ARRAY_UNITS (an unrecorded channel as "
                          "an (m, 0) array).")
     width = dict(displacement=n, velocity=n, acceleration=n, ground_acceleration=2,
                  element_force=n_elements, element_deformation=n_elements, bearing_force=2,

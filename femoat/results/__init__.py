@@ -1,5 +1,9 @@
 """Results of a building run: histories, the impact table, the peak summary, save and load.
 
+This package holds both results: :class:`RunResult` here (a run along one axis) and
+:class:`~femoat.results.plan.PlanRunResult` (a run in plan), one layer above the solver whose
+recording layer they read.
+
 Files are NumPy ``.npz`` archives: every array is stored under a descriptive name, and a JSON
 document (``meta``) holds the units of each array, the DOF/element/contact names, the impact
 table, the peak summary, the energy balance and solver statistics. We chose it over NetCDF to keep
