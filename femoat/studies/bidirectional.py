@@ -46,8 +46,6 @@ counted under ``failed``) is left out of that case's statistics.
 """
 
 import functools
-import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -118,22 +116,13 @@ def definitions(quick=False):
 def run_study(out, quick=False, workers=None, serial=False, overwrite=False, stream=None):
     """Run (or resume) both suites into ``out/1d`` and ``out/2d``; write ``out/table.csv`` and
     ``out/table.markdown``; return ``(table, markdown)``."""
-    from femoat.suite import load_table, run_suite, suite_from_dict
+    from femoat.studies.suites import run_suites, write_table
 
-    stream = stream or sys.stderr
-    out = Path(out)
-    tables = {}
-    for key, d in definitions(quick).items():
-        stream.write(f"femoat study bidirectional: the {key.upper()} suite\n")
-        run_suite(suite_from_dict(d), out / key, workers=workers, serial=serial,
-                  overwrite=overwrite, stream=stream)
-        tables[key] = load_table(out / key)
+    tables = run_suites("bidirectional", definitions(quick), out, workers=workers, serial=serial,
+                        overwrite=overwrite, stream=stream)
     table = study_table(tables["1d"], tables["2d"])
     markdown = to_markdown(table)
-    from femoat.atomic import write_text
-
-    write_text(out / "table.csv", table.to_csv(index=False))
-    write_text(out / "table.markdown", markdown)
+    write_table(out, table, markdown)
     return table, markdown
 
 

@@ -36,7 +36,6 @@ collapsed. :func:`figure` draws them.
 """
 
 import functools
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -131,22 +130,14 @@ def definitions(quick=False):
 def run_study(out, quick=False, workers=None, serial=False, overwrite=False, stream=None):
     """Run (or resume) both suites into ``out/1d`` and ``out/2d``; write ``out/table.csv``,
     ``out/table.markdown`` and ``out/isolators.png``; return ``(table, markdown)``."""
-    from femoat.atomic import write_text
-    from femoat.suite import load_table, run_suite, suite_from_dict
+    from femoat.studies.suites import run_suites, write_table
 
-    stream = stream or sys.stderr
-    out = Path(out)
-    tables = {}
-    for key, d in definitions(quick).items():
-        stream.write(f"femoat study isolators: the {key.upper()} suite\n")
-        run_suite(suite_from_dict(d), out / key, workers=workers, serial=serial,
-                  overwrite=overwrite, stream=stream)
-        tables[key] = load_table(out / key)
+    tables = run_suites("isolators", definitions(quick), out, workers=workers, serial=serial,
+                        overwrite=overwrite, stream=stream)
     table = study_table(tables["1d"], tables["2d"])
     markdown = to_markdown(table)
-    write_text(out / "table.csv", table.to_csv(index=False))
-    write_text(out / "table.markdown", markdown)
-    figure(table, out / "isolators.png")
+    write_table(out, table, markdown)
+    figure(table, Path(out) / "isolators.png")
     return table, markdown
 
 

@@ -1,0 +1,30 @@
+"""Running a study's suites: each definition into its own folder (resumable), its run table read
+back, and the study's table written beside them."""
+
+import sys
+from pathlib import Path
+
+
+def run_suites(name, definitions, out, workers=None, serial=False, overwrite=False,
+               stream=None):
+    """Run (or resume) each suite of ``definitions`` ({key: parsed-TOML dict}) into
+    ``out/<key>``; return {key: its run table} (:func:`femoat.suite.load_table`)."""
+    from femoat.suite import load_table, run_suite, suite_from_dict
+
+    stream = stream or sys.stderr
+    out = Path(out)
+    tables = {}
+    for key, d in definitions.items():
+        stream.write(f"femoat study {name}: the {key.upper()} suite\n")
+        run_suite(suite_from_dict(d), out / key, workers=workers, serial=serial,
+                  overwrite=overwrite, stream=stream)
+        tables[key] = load_table(out / key)
+    return tables
+
+
+def write_table(out, table, markdown):
+    """``out/table.csv`` and ``out/table.markdown``, each written atomically."""
+    from femoat.atomic import write_text
+
+    write_text(Path(out) / "table.csv", table.to_csv(index=False))
+    write_text(Path(out) / "table.markdown", markdown)
