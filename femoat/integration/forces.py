@@ -136,13 +136,8 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
             KT[i, i] = K[i, i]
             CT[i, i] = C[i, i]
     # the plan bearings first: the isolator is the first element of a 1D model (the same sums)
-    for e in range(b_f.shape[0]):
-        kb, cb = k22[0], k22[1]
-        dofs = model.b_dofs[e]
-        ix, iy = dofs[0], dofs[1]
-        bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
-                           u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
-        _scatter(dofs, b_f[e], kb, cb, F, KT, CT, want_tangent)
+    if b_f.shape[0] > 0:
+        _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau)
     for e in range(el_code.size):
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -190,6 +185,19 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
                             if b[j] != 0.0:
                                 KT[i, j] += kf * b[i] * b[j]
                                 CT[i, j] += cf * b[i] * b[j]
+
+
+@njit(cache=True)
+def _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau):
+    """Each plan bearing's force and tangents at (u, v) from its committed state, scattered into
+    F, KT, CT (a function of its own: the kinds' kernels stay out of the callers' code)."""
+    for e in range(b_f.shape[0]):
+        kb, cb = k22[0], k22[1]
+        dofs = model.b_dofs[e]
+        ix, iy = dofs[0], dofs[1]
+        bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
+                           u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
+        _scatter(dofs, b_f[e], kb, cb, F, KT, CT, want_tangent)
 
 
 @njit(cache=True, inline="always")

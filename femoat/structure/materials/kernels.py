@@ -22,6 +22,7 @@ import numpy as np
 
 from femoat.bearings import registry
 from femoat.bearings.dispatch import bearing_axis_commit, bearing_axis_energy, bearing_axis_trial
+from femoat.bearings.friction_pendulum import axis_trial as fp_axis_trial
 from femoat.compilation.jit import njit
 from femoat.structure.materials import bilinear, elastic, imk
 from femoat.structure.materials.bilinear import bilinear_commit, bilinear_energy, bilinear_trial
@@ -58,6 +59,12 @@ def param_size(code: int) -> int:
 
 
 @njit(cache=True)
+def _other_bearing_trial(code, p, s, u, v):
+    """The bearing kinds after the friction pendulum, through the dispatcher."""
+    return bearing_axis_trial(code - BEARING, p, s, u, v)
+
+
+@njit(cache=True)
 def material_trial(code, p, s, u, v):
     """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at trial (u [in], v [in/s])."""
     if code == ELASTIC:
@@ -66,8 +73,10 @@ def material_trial(code, p, s, u, v):
         return bilinear_trial(p, s, u)
     if code == IMK:
         return imk_trial(p, s, u)
-    if code >= BEARING:
-        return bearing_axis_trial(code - BEARING, p, s, u, v)
+    if code == BEARING:  # the single friction pendulum, kind 0: called directly
+        return fp_axis_trial(p, s, u, v)
+    if code > BEARING:
+        return _other_bearing_trial(code, p, s, u, v)
     return np.nan, np.nan, np.nan
 
 
