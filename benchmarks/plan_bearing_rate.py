@@ -77,6 +77,7 @@ class Tableau:
         self.explicit = not np.any(np.diag(self.AI))
         # first same as last: the last explicit stage is the step's solution
         self.fsal = bool(np.allclose(self.AE[-1], self.b, atol=0, rtol=0) and self.c[-1] == 1.0)
+        self.B = None  # GARK: the velocity rows of the implicit stages (None: the explicit rows)
 
 
 def _lower(rows, s):
@@ -261,7 +262,7 @@ def _density(t):
 
 def _colourings(t):
     """Every colouring of tree t: (colour, (children...)), colour 0 explicit, 1 implicit."""
-    kids = [_colourings(c) for c in t]
+    kids = [list(_colourings(c)) for c in t]
     for col in (0, 1):
         for combo in itertools.product(*kids):
             yield (col, combo)
@@ -335,8 +336,9 @@ STICK, SLIP = 0, 1
 
 
 def force(ux, uy, zx, zy):
-    """The bearing force (f_x, f_y) [kip]."""
-    return W / R * ux + MU * W * zx, W / R * uy + MU * W * zy
+    """The bearing force (f_x, f_y) [kip], in fp.axis_trial's arithmetic (k_r·u + (mu·W)·z)."""
+    kr, muw = W / R, MU * W
+    return kr * ux + muw * zx, kr * uy + muw * zy
 
 
 def slip_rate(zx, zy, vx, vy):
@@ -485,7 +487,7 @@ def reference(sc, rtol=1e-13, atol=1e-14):
 
 class Count:
     def __init__(self):
-        self.steps = self.f_e = self.rate = self.newton = 0
+        self.steps = self.f_e = self.rate = self.newton = self.guard = 0
 
 
 def _stage_uv(sc, t, h, y, i, tab, Vx, Vy, Ax, Ay):
@@ -504,9 +506,14 @@ def _stage_uv(sc, t, h, y, i, tab, Vx, Vy, Ax, Ay):
     return y[0] + h * su_x, y[1] + h * su_y, y[2] + h * sv_x, y[3] + h * sv_y
 
 
+MASS = W / GRAV
+
+
 def _accel(sc, t, ux, uy, zx, zy):
+    """a = -a_g - f/m, the force as femoat's kernels compute it (fp.axis_trial's arithmetic)."""
     gx, gy = sc.ag(t)
-    return -gx - KR * ux - MUG * zx, -gy - KR * uy - MUG * zy
+    fx, fy = force(ux, uy, zx, zy)
+    return -gx - fx / MASS, -gy - fy / MASS
 
 
 def _prepare(tab):
@@ -514,6 +521,7 @@ def _prepare(tab):
         tab.AE_rows = [list(r) for r in tab.AE]
         tab.AI_rows = [list(r) for r in tab.AI]
         tab.bl, tab.bIl, tab.cl = list(tab.b), list(tab.bI), list(tab.c)
+        tab.B_rows = None if tab.B is None else [list(r) for r in tab.B]
     return tab
 
 
@@ -529,6 +537,13 @@ def step_z(tab, sc, t, h, y, mode, cnt):
     AI = tab.AI_rows
     for i in range(s):
         ux, uy, vx, vy = _stage_uv(sc, t, h, y, i, tab, Vx, Vy, Ax, Ay)
+        Vx[i], Vy[i] = vx, vy
+        if tab.B is not None and sc.imposed is None:  # GARK: the z-solve's own velocity row
+            svx = svy = 0.0
+            for j in range(i):
+                svx += tab.B_rows[i][j] * Ax[j]
+                svy += tab.B_rows[i][j] * Ay[j]
+            vx, vy = y[2] + h * svx, y[3] + h * svy
         if mode == SLIP:
             wx, wy = 0.0, 0.0
             for j in range(i):
@@ -556,12 +571,26 @@ def step_z(tab, sc, t, h, y, mode, cnt):
                         break
             Gx[i], Gy[i] = slip_rate(zx, zy, vx, vy)
             cnt.rate += 1
+            zx, zy = _guard(zx, zy, zx0, zy0, y[0], y[1], ux, uy, cnt)
         else:
             zx, zy = stick_z(zx0, zy0, y[0], y[1], ux, uy)
-        Vx[i], Vy[i] = vx, vy
         if sc.imposed is None:
             Ax[i], Ay[i] = _accel(sc, t + tab.c[i] * h, ux, uy, zx, zy)
     return _finish(tab, sc, t, h, y, mode, cnt, Vx, Vy, Ax, Ay, Gx, Gy)
+
+
+def _guard(zx, zy, zx0, zy0, ux0, uy0, ux, uy, cnt):
+    """A sliding stage whose trial from the committed state is inside the disk (the stage moved
+    back, unloading) reads the trial instead, as the 1D clip does: the 1D step along a line,
+    bit for bit, whatever the signs of a stage's coefficients. (Never met on a smooth slip
+    branch; counted.)"""
+    tx = zx0 + (ux - ux0) / UY
+    ty = zy0 + (uy - uy0) / UY
+    if tx * tx + ty * ty <= 1.0:
+        if (tx, ty) != (zx, zy):
+            cnt.guard += 1
+        return tx, ty
+    return zx, zy
 
 
 def _finish(tab, sc, t, h, y, mode, cnt, Vx, Vy, Ax, Ay, Gx, Gy, zend=None):
@@ -582,6 +611,7 @@ def _finish(tab, sc, t, h, y, mode, cnt, Vx, Vy, Ax, Ay, Gx, Gy, zend=None):
         bI = tab.bIl
         zx = y[4] + h * sum(bI[j] * Gx[j] for j in range(s))
         zy = y[5] + h * sum(bI[j] * Gy[j] for j in range(s))
+        zx, zy = _guard(zx, zy, y[4], y[5], y[0], y[1], ux, uy, cnt)
     else:
         zx, zy = stick_z(y[4], y[5], y[0], y[1], ux, uy)
     return [ux, uy, vx, vy, zx, zy]
@@ -664,4 +694,89 @@ def integrate(tab, form, sc, segs, h, cnt=None):
             nz = math.hypot(y[4], y[5])
             y[4], y[5] = y[4] / nz, y[5] / nz
         out.append(list(y))
+    return out, cnt
+
+
+# ================================================================================================
+# 4. Along a line: the plan step against the 1D step (femoat's axis kernel) of the x component
+# ================================================================================================
+
+
+def step_axis(tab, sc, t, h, y, mode, cnt):
+    """The 1D step of the x component: the explicit tableau, every stage's force from
+    femoat's own fp.axis_trial (z the clip from the committed state), the commit fp._z_axis."""
+    s = tab.s
+    p = _P
+    st = np.array([y[0], y[4], y[2]])
+    V, A = [0.0] * s, [0.0] * s
+    for i in range(s):
+        su = sv = 0.0
+        for j in range(i):
+            a = tab.AE_rows[i][j]
+            su += a * V[j]
+            sv += a * A[j]
+        u, v = y[0] + h * su, y[2] + h * sv
+        f, _, _ = fp.axis_trial(p, st, u, v)
+        V[i] = v
+        A[i] = -sc.ag(t + tab.c[i] * h)[0] - f / MASS
+    cnt.steps += 1
+    u1 = y[0] + h * sum(tab.bl[j] * V[j] for j in range(s))
+    v1 = y[2] + h * sum(tab.bl[j] * A[j] for j in range(s))
+    z1, _ = fp._z_axis(p, st, u1)
+    return [u1, 0.0, v1, 0.0, z1, 0.0]
+
+
+STEPS["axis"] = step_axis
+
+
+def line_scenario(t1=3.0, ax=0.25, period=1.2):
+    """a_g = (ax·g·sin wt, 0) from rest: a straight orbit with reversals (stick phases)."""
+    w = 2 * math.pi / period
+    return Scenario("line", 0.0, t1, lambda t: (ax * GRAV * math.sin(w * t), 0.0), [0.0] * 6,
+                    STICK)
+
+
+def line_check(methods, h=0.005):
+    """Every step's state of the plan step along x against the 1D step (the same explicit
+    tableau, and dp5: femoat's 1D default)."""
+    sc = line_scenario()
+    segs, _, _ = reference(sc)
+    print(f"\n## 4. Along a line (a_g along x only, y at rest; {len(segs)} stick/slip segments, "
+          f"h = {h * 1e3:g} ms)\n")
+    print("| plan step | 1D step compared | max |x difference| over the run | y exactly 0 "
+          "| stages inside the disk while sliding (guard) |")
+    print("|---|---|---|---|---|")
+    dp = _prepare(dp5_tableau())
+    base = _trace(dp, "axis", sc, segs, h)[0]
+    for name, tab, form in methods:
+        tab = _prepare(tab)
+        trace, cnt = _trace(tab, form, sc, segs, h)
+        own = base if tab.name == "dp5" else _trace(tab, "axis", sc, segs, h)[0]
+        for label, other in (("same tableau, 1D", own), ("dp5, 1D (femoat's default)", base)):
+            if label.startswith("same") and tab.name == "dp5":
+                continue
+            d = max(max(abs(a[k] - b[k]) for k in (0, 2, 4)) for a, b in zip(trace, other))
+            y0 = all(a[1] == 0.0 and a[3] == 0.0 and a[5] == 0.0 for a in trace)
+            print(f"| {name} | {label} | {'0 (bit for bit)' if d == 0 else f'{d:.1e}'} "
+                  f"| {'yes' if y0 else 'no'} | {cnt.guard} |")
+
+
+def _trace(tab, form, sc, segs, h):
+    """Every step's state (the run of :func:`integrate`, all steps kept)."""
+    _prepare(tab)
+    cnt = Count()
+    step = STEPS[form]
+    y = list(sc.y0)
+    out = [list(y)]
+    for k, (ta, tb, mode) in enumerate(segs):
+        n = max(1, math.ceil((tb - ta) / h - 1e-9))
+        hh = (tb - ta) / n
+        for m in range(n):
+            y = step(tab, sc, ta + m * hh, hh, y, mode, cnt)
+            out.append(list(y))
+        if mode == STICK and k + 1 < len(segs) and form != "axis":
+            nz = math.hypot(y[4], y[5])
+            y[4], y[5] = y[4] / nz, y[5] / nz
+        elif mode == STICK and k + 1 < len(segs):
+            y[4] = 1.0 if y[4] > 0 else -1.0  # the 1D commit just past the kink: the clip
     return out, cnt
