@@ -1,9 +1,9 @@
 """The plan friction pendulum's friction state carried through a Runge-Kutta step: which
 formulation reaches fourth order on a curved orbit, and at what cost (issue 26).
 
-    python benchmarks/plan_bearing_rate.py [--quick]
+    python benchmarks/plan_bearing_rate.py [--full]
 
-Prints, in one run (about a minute on the shared 2-core machine):
+Prints, in one run (about a minute on an idle core; --full adds h = 0.3125 ms):
 
 1. the Butcher tableaus used (Dormand-Prince 5(4) from femoat's dp5 module; Kennedy & Carpenter's
    ARK3(2)4L[2]SA, ARK4(3)6L[2]SA, ARK5(4)8L[2]SA (2003) and ARK4(3)7L[2]SA1 (2019), transcribed
@@ -24,16 +24,18 @@ Prints, in one run (about a minute on the shared 2-core machine):
 
 Formulations (the friction state z is part of the stage state in all but the first):
 
-* ``path``: femoat's current plan step (dp5 stages, z from the committed state along the cubic
-  Hermite path to the stage, :func:`femoat.bearings.friction_pendulum._path_z`): the baseline;
+* ``path``: dp5 stages with z from the committed state along the cubic Hermite path to the
+  stage (:func:`femoat.bearings.friction_pendulum._path_z`): the step femoat refuses today;
+* ``newmark+path``: Newmark (average acceleration) with femoat's ``plan_trial`` along the step's
+  path: the plan run's method today;
 * ``dp5-z``: dp5 on (u, v, z), z's slip rate explicit (stable only for h·|v|/u_y below ~3);
 * ``dp5-X``: dp5 on (u, v, X), X = (X0, x) the homogeneous coordinates of z = x/X0 (the Lorentz
   group form of perfect plasticity, Hong & Liu 1999): while sliding X' = (x.v, X0 v)/u_y is
   *linear* in X, explicit;
 * ``ark3/ark4/ark437/ark5``: the additive pairs, the structure (u, v) explicit and z's rate
   implicit (one 2x2 Newton solve per bearing and stage);
-* ``dp5+I``: dp5 for the structure with an implicit companion built here for z (stage-wise
-  exact on a line: the 1D dp5 step bit for bit); see the docs.
+* ``dp5+I``: dp5 for the structure with an implicit companion for z in GARK form, found here
+  (coupled order 4, L-stable; unoptimized): on a line it is the 1D dp5 step bit for bit.
 
 Units: kip, in, s.  Findings: docs/coupled_friction.md.
 """
@@ -268,17 +270,20 @@ def _colourings(t):
             yield (col, combo)
 
 
-def _stage_weight(ct, A):
-    _, kids = ct
-    g = np.ones(A[0].shape[0])
+def _stage_weight(ct, M):
+    """The stage weights of coloured tree ct: M[(parent colour, child colour)] is the matrix
+    of an edge (an ARK: the child's A whatever the parent; a GARK: its own coupling blocks)."""
+    col, kids = ct
+    g = np.ones(M[(col, col)].shape[0])
     for k in kids:
-        g = g * (A[k[0]] @ _stage_weight(k, A))
+        g = g * (M[(col, k[0])] @ _stage_weight(k, M))
     return g
 
 
 def order_residual(tab, p, weights=None, coupled=True):
     """Largest |Phi(t) - 1/gamma(t)| over the (bicoloured if ``coupled``) trees of order <= p."""
-    A = (tab.AE, tab.AI)
+    M = {(0, 0): tab.AE, (1, 0): tab.AE if tab.B is None else tab.B, (0, 1): tab.AI,
+         (1, 1): tab.AI}
     bw = (tab.b, tab.bI) if weights is None else weights
     worst = 0.0
     for n, ts in rooted_trees(p).items():
@@ -286,7 +291,7 @@ def order_residual(tab, p, weights=None, coupled=True):
             for ct in _colourings(t):
                 if not coupled and _has_mixed(ct):
                     continue
-                phi = bw[ct[0]] @ _stage_weight(ct, A)
+                phi = bw[ct[0]] @ _stage_weight(ct, M)
                 worst = max(worst, abs(phi - 1.0 / _density(t)))
     return worst
 
@@ -316,10 +321,11 @@ def check_tableaus(tabs):
         p = tab.order
         res = order_residual(tab, p)
         nxt = order_residual(tab, p + 1)
-        emb = order_residual(tab, p - 1, weights=(tab.d, tab.dI))
+        emb = order_residual(tab, p - 1, weights=(tab.d, tab.dI)) if tab.B is None else None
         sa = "-" if tab.explicit else ("yes" if np.array_equal(tab.AI[-1], tab.bI) else "no")
         rinf = "-" if tab.explicit else f"{abs(stability(tab.AI, tab.bI, -1e8)):.1e}"
-        print(f"| {tab.name} | {tab.s} | {p} | {res:.1e} | {nxt:.1e} | {emb:.1e} | {sa} | {rinf}"
+        emb = "none yet" if emb is None else f"{emb:.1e}"
+        print(f"| {tab.name} | {tab.s} | {p} | {res:.1e} | {nxt:.1e} | {emb} | {sa} | {rinf}"
               f" | {'yes' if tab.fsal else 'no'} |")
     return True
 
@@ -466,6 +472,8 @@ def reference(sc, rtol=1e-13, atol=1e-14):
         sol = solve_ivp(_ref_rhs(sc, mode), (t, sc.t1), y, method="DOP853", rtol=rtol, atol=atol,
                         events=_ref_events(sc, mode))
         nfev += sol.nfev
+        if sc.imposed is None:
+            sc.vmax = max(getattr(sc, "vmax", 0.0), float(np.max(np.hypot(sol.y[2], sol.y[3]))))
         if sol.status == 1 and sol.t_events[0].size:
             tb, yb = sol.t_events[0][0], sol.y_events[0][0].copy()
         else:
@@ -753,7 +761,7 @@ def line_check(methods, h=0.005):
         trace, cnt = _trace(tab, form, sc, segs, h)
         own = base if tab.name == "dp5" else _trace(tab, "axis", sc, segs, h)[0]
         for label, other in (("same tableau, 1D", own), ("dp5, 1D (femoat's default)", base)):
-            if label.startswith("same") and tab.name == "dp5":
+            if label.startswith("same") and np.array_equal(tab.AE, dp.AE):
                 continue
             d = max(max(abs(a[k] - b[k]) for k in (0, 2, 4)) for a, b in zip(trace, other))
             y0 = all(a[1] == 0.0 and a[3] == 0.0 and a[5] == 0.0 for a in trace)
@@ -780,3 +788,290 @@ def _trace(tab, form, sc, segs, h):
         elif mode == STICK and k + 1 < len(segs):
             y[4] = 1.0 if y[4] > 0 else -1.0  # the 1D commit just past the kink: the clip
     return out, cnt
+
+
+# ---- femoat's plan default today: Newmark (average acceleration) with the path z ------------
+
+
+def step_newmark(tab, sc, t, h, y, mode, cnt):
+    """Newmark gamma = 1/2, beta = 1/4 on the rigid mass, Newton on u1, the force and its
+    tangents from femoat's fp.plan_trial along the step's path (tau = h): the plan run's
+    method today. The state carries the acceleration (y[6:8])."""
+    p = _P
+    st = np.array([y[0], y[1], y[4], y[5], y[2], y[3]])
+    gx, gy = sc.ag(t + h)
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    ux, uy = y[0] + h * y[2] + 0.5 * h * h * y[6], y[1] + h * y[3] + 0.5 * h * h * y[7]
+    for _ in range(50):
+        ax = 4 * (ux - y[0]) / (h * h) - 4 * y[2] / h - y[6]
+        ay = 4 * (uy - y[1]) / (h * h) - 4 * y[3] / h - y[7]
+        vx, vy = y[2] + 0.5 * h * (y[6] + ax), y[3] + 0.5 * h * (y[7] + ay)
+        fp.plan_trial(p, st, y[0], y[1], y[2], y[3], ux, uy, vx, vy, h, f, k, c)
+        cnt.f_e += 1
+        rx, ry = MASS * (ax + gx) + f[0], MASS * (ay + gy) + f[1]
+        m4 = 4 * MASS / (h * h)
+        K00, K01 = m4 + k[0, 0] + 2 / h * c[0, 0], k[0, 1] + 2 / h * c[0, 1]
+        K10, K11 = k[1, 0] + 2 / h * c[1, 0], m4 + k[1, 1] + 2 / h * c[1, 1]
+        det = K00 * K11 - K01 * K10
+        dx, dy = -(K11 * rx - K01 * ry) / det, -(K00 * ry - K10 * rx) / det
+        ux, uy = ux + dx, uy + dy
+        if abs(dx) + abs(dy) <= 1e-13 * (1.0 + abs(ux) + abs(uy)):
+            break
+    ax = 4 * (ux - y[0]) / (h * h) - 4 * y[2] / h - y[6]
+    ay = 4 * (uy - y[1]) / (h * h) - 4 * y[3] / h - y[7]
+    vx, vy = y[2] + 0.5 * h * (y[6] + ax), y[3] + 0.5 * h * (y[7] + ay)
+    zx, zy, _ = fp._path_z(p, st, y[0], y[1], y[2], y[3], ux, uy, vx, vy, h)
+    cnt.steps += 1
+    return [ux, uy, vx, vy, zx, zy, ax, ay]
+
+
+STEPS["newmark"] = step_newmark
+
+
+# ================================================================================================
+# 5. Measurements
+# ================================================================================================
+
+
+def gark_tableau():
+    """dp5 + an implicit companion for z in GARK form (section 6 of the docs): see DP5_GARK."""
+    tab = dp5_tableau()
+    tab.name, tab.order = "dp5+I", 4
+    tab.AI = np.array(DP5_GARK_A)
+    tab.bI = tab.AI[-1].copy()
+    tab.B = np.array(DP5_GARK_B)
+    tab.explicit = False
+    return tab
+
+
+def run_case(tab, form, sc, segs, states, h):
+    """Errors against the reference: end displacement, velocity, z; the force at every landed
+    switch and at the end; and the counts."""
+    y0 = list(sc.y0)
+    if form == "newmark":
+        sc_y = list(sc.y0)
+        ax, ay = _accel(sc, sc.t0, sc_y[0], sc_y[1], sc_y[4], sc_y[5])
+        y0 = sc_y + [ax, ay]
+    t0 = time.perf_counter()
+    with np.errstate(all="ignore"):
+        out, cnt = _integrate_from(tab, form, sc, segs, h, y0)
+    wall = time.perf_counter() - t0
+    ref = states
+    e_f = 0.0
+    for a, b in zip(out[1:], ref[1:]):
+        fa, fb = force(a[0], a[1], a[4], a[5]), force(b[0], b[1], b[4], b[5])
+        e_f = max(e_f, math.hypot(fa[0] - fb[0], fa[1] - fb[1]))
+    a, b = out[-1], ref[-1]
+    e_u = math.hypot(a[0] - b[0], a[1] - b[1])
+    e_v = math.hypot(a[2] - b[2], a[3] - b[3])
+    e_z = math.hypot(a[4] - b[4], a[5] - b[5])
+    bad = not all(math.isfinite(x) for x in a[:6]) or e_u > 1.0
+    nan = float("nan")
+    return dict(e_u=nan if bad else e_u, e_v=nan if bad else e_v, e_z=nan if bad else e_z,
+                e_f=nan if bad else e_f, cnt=cnt, wall=wall)
+
+
+def _integrate_from(tab, form, sc, segs, h, y0):
+    _prepare(tab)
+    cnt = Count()
+    step = STEPS[form]
+    y = list(y0)
+    if sc.imposed is not None:
+        y[:4] = sc.imposed(sc.t0)
+    out = [list(y)]
+    for k, (ta, tb, mode) in enumerate(segs):
+        n = max(1, math.ceil((tb - ta) / h - 1e-9))
+        hh = (tb - ta) / n
+        for m in range(n):
+            y = step(tab, sc, ta + m * hh, hh, y, mode, cnt)
+        if mode == STICK and k + 1 < len(segs):
+            nz = math.hypot(y[4], y[5])
+            y[4], y[5] = y[4] / nz, y[5] / nz
+        out.append(list(y))
+    return out, cnt
+
+
+def _fmt(e):
+    return "unstable" if not math.isfinite(e) else f"{e:.1e}"
+
+
+def _orders(errs):
+    out = []
+    for a, b in zip(errs, errs[1:]):
+        out.append(math.log2(a / b) if (math.isfinite(a) and math.isfinite(b) and a > 0 and b > 0)
+                   else float("nan"))
+    return out
+
+
+def fitted_order(hs, errs, lo, hi):
+    """Least-squares slope of log(err) on log(h) over lo <= h <= hi (finite errors only)."""
+    pts = [(math.log(h), math.log(e)) for h, e in zip(hs, errs)
+           if lo <= h * (1 + 1e-9) and h <= hi * (1 + 1e-9) and math.isfinite(e) and e > 0]
+    if len(pts) < 2:
+        return float("nan")
+    x, y = np.array(pts).T
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def scenario_table(sc, segs, states, methods, hs, results, key, unit):
+    key, title = key.split(": ", 1)
+    print(f"\n{key}: {title} [{unit}] (log2 ratio to the next step in brackets)\n")
+    print("| method | " + " | ".join(f"h = {h * 1e3:g} ms" for h in hs) + " |")
+    print("|---|" + "---|" * len(hs))
+    for name, _, _ in methods:
+        errs = [results[(sc.name, name, h)][key] for h in hs]
+        od = _orders(errs)
+        cells = []
+        for i, e in enumerate(errs):
+            o = f" ({od[i]:.1f})" if i < len(od) and math.isfinite(od[i]) else ""
+            cells.append(_fmt(e) + o)
+        print(f"| {name} | " + " | ".join(cells) + " |")
+
+
+def methods_list():
+    dp = dp5_tableau()
+    out = [("path (femoat today, dp5)", dp, "path"), ("newmark+path (plan default)", dp, "newmark"),
+           ("dp5-z (explicit)", dp, "z"), ("dp5-X (explicit)", dp, "X"),
+           ("ark3 (KenCarp3)", ark324(), "z"), ("ark4 (KenCarp4)", ark436(), "z"),
+           ("ark437 (KenCarp47)", ark437(), "z"), ("ark5 (KenCarp5)", ark548(), "z")]
+    if DP5_GARK_A is not None:
+        out.append(("dp5+I (GARK, here)", gark_tableau(), "z"))
+    return out
+
+
+# dp5 + an implicit companion for z in GARK form (Sandu & Günther 2015): the explicit stages
+# are dp5's; implicit stage i (at dp5's c_i) solves z with the velocity v0 + h·Σ B_ij·a_j and
+# gives explicit stage i its z; z_{n+1} is the last implicit stage (stiffly accurate). Found
+# here by least squares (coupled order 4 on every bicoloured tree, checked in section 1;
+# L-stable, A-stable on the imaginary axis, gamma = 0.275). A feasibility demonstration: not
+# optimized (stage order 1, error constants free).
+DP5_GARK_A = [
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [-0.07500000000000001, 0.275, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [0.1970591272403296, -0.17205912724032962, 0.275, 0.0, 0.0, 0.0, 0.0],
+    [0.2679872769271119, 0.07568299436719945, 0.18132972870568861, 0.275, 0.0, 0.0, 0.0],
+    [0.7742654933418114, 0.12450418333825802, -0.5399813552184215, 0.25510056742724085, 0.275, 0.0, 0.0],
+    [0.7058328110793359, -0.11702251941534288, -0.1693460802636497, 0.4207046278702161, -0.11516883927055942, 0.275, 0.0],
+    [0.05820185610049233, 0.10031805779525398, 0.40195592863872665, 0.2846943080120302, 0.20912117412410833, -0.32929132467061145, 0.275],
+]
+DP5_GARK_B = [
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [-0.1562487245463633, 0.4562487245463633, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [0.3242601995372946, -0.04106312428778795, 0.5168029247504934, 0.0, 0.0, 0.0, 0.0],
+    [0.3727940627055134, -0.09481174083714378, 0.28264226179761126, 0.32826430522290795, 0.0, 0.0, 0.0],
+    [0.28791373656496233, 0.3315691090474519, -0.17164922904881652, 0.2121983241903888, 0.3399680592460135, 0.0, 0.0],
+    [0.15189524113964215, -0.15524170294051465, 0.32583966968981265, 0.3094296422177163, 0.2567970654466062, 0.11128008444673743, 0.0],
+]
+
+
+def main(full=False):
+    t_start = time.perf_counter()
+    tabs = [dp5_tableau(), ark324(), ark436(), ark437(), ark548()]
+    if DP5_GARK_A is not None:
+        tabs.append(gark_tableau())
+    check_tableaus(tabs)
+    hs = [0.01, 0.005, 0.0025, 0.00125, 0.000625] + ([0.0003125] if full else [])
+    scens = [circle_scenario(), ellipse_scenario(), eight_scenario(),
+             imposed_scenario("circle"), imposed_scenario("eight")]
+    methods = methods_list()
+    print("\n## 2. Scenarios (the bearing alone; reference DOP853 rtol 1e-13, switches located)\n")
+    print("| scenario | interval [s] | stick/slip segments | max |v| [in/s] | max h·|v|/u_y at "
+          "h = 5 ms | reference RHS evaluations |")
+    print("|---|---|---|---|---|---|")
+    refs = {}
+    for sc in scens:
+        segs, states, nfev = reference(sc)
+        refs[sc.name] = (segs, states)
+        vmax = _max_speed(sc, segs, states)
+        print(f"| {sc.name} | {sc.t0:g}-{sc.t1:g} | {len(segs)} | {vmax:.1f} | "
+              f"{0.005 * vmax / UY:.1f} | {nfev} |")
+    results = {}
+    print("\n## 3. Errors against the reference, fixed steps landed on the switches")
+    for sc in scens:
+        segs, states = refs[sc.name]
+        meths = [m for m in methods if not (sc.imposed is not None and m[2] == "newmark")]
+        for name, tab, form in meths:
+            for h in hs:
+                results[(sc.name, name, h)] = run_case(tab, form, sc, segs, states, h)
+        print(f"\n### {sc.name}")
+        scenario_table(sc, segs, states, meths, hs, results, "e_u: end displacement error", "in")
+        scenario_table(sc, segs, states, meths, hs, results,
+                       "e_f: force error, max over the switches and the end", "kip")
+        if sc.imposed is not None:
+            scenario_table(sc, segs, states, meths, hs, results, "e_z: end z error", "-")
+    summary(scens, methods, hs, results)
+    costs(scens, methods, hs, results)
+    line_check([(n, t, f) for n, t, f in methods if f in ("z", "X")])
+    print(f"\n(total {time.perf_counter() - t_start:.0f} s)")
+
+
+def _max_speed(sc, segs, states):
+    """The largest bearing speed |v| [in/s]: the prescribed path's, or over the reference's
+    own steps."""
+    if sc.imposed is not None:
+        return max(math.hypot(*sc.imposed(t)[2:]) for t in np.linspace(sc.t0, sc.t1, 2001))
+    return sc.vmax
+
+
+def summary(scens, methods, hs, results):
+    print("\n## 3b. Observed orders: least-squares slope of the force error e_f (and of e_u)\n")
+    print("Stiff range: 0.625 <= h <= 5 ms (h·|v|/u_y ~ 1-15); asymptotic: the two smallest "
+          "steps.\n")
+    print("| method | " + " | ".join(sc.name for sc in scens) + " |")
+    print("|---|" + "---|" * len(scens))
+    for name, _, form in methods:
+        cells = []
+        for sc in scens:
+            if (sc.name, name, hs[0]) not in results:
+                cells.append("-")
+                continue
+            ef = [results[(sc.name, name, h)]["e_f"] for h in hs]
+            eu = [results[(sc.name, name, h)]["e_u"] for h in hs]
+            o1 = fitted_order(hs, ef, 0.000625, 0.005)
+            o2 = _orders(ef)[-1]
+            ou = fitted_order(hs, eu, 0.000625, 0.005)
+            cells.append(f"{o1:.1f} / {o2:.1f} (u {ou:.1f})" if sc.imposed is None
+                         else f"{o1:.1f} / {o2:.1f}")
+        print(f"| {name} | " + " | ".join(cells) + " |")
+
+
+def costs(scens, methods, hs, results):
+    print("\n## 3c. Cost: evaluations per step, and the structure's force evaluations per "
+          "simulated second for a given force error (log-log interpolation over h)\n")
+    sc = [s for s in scens if s.name == "eight"][0]
+    print(f"On '{sc.name}'.\n")
+    print("| method | f_E / step | bearing rates / step | 2x2 Newton solves / step "
+          "| f_E per s for e_f <= 1e-3 kip | <= 1e-5 kip | <= 1e-7 kip |")
+    print("|---|---|---|---|---|---|---|")
+    dur = sc.t1 - sc.t0
+    for name, tab, form in methods:
+        r = results[(sc.name, name, hs[2])]
+        cnt = r["cnt"]
+        per = []
+        for target in (1e-3, 1e-5, 1e-7):
+            per.append(_work_for(sc, name, hs, results, target, dur))
+        print(f"| {name} | {cnt.f_e / cnt.steps:.1f} | {cnt.rate / cnt.steps:.1f} | "
+              f"{cnt.newton / cnt.steps:.1f} | " + " | ".join(per) + " |")
+
+
+def _work_for(sc, name, hs, results, target, dur):
+    pts = []
+    for h in hs:
+        r = results[(sc.name, name, h)]
+        if math.isfinite(r["e_f"]) and r["e_f"] > 0:
+            pts.append((r["cnt"].f_e / dur, r["e_f"]))
+    for (w1, e1), (w2, e2) in zip(pts, pts[1:]):
+        if e1 >= target >= e2 and e1 > e2:
+            lw = math.log(w1) + (math.log(target) - math.log(e1)) * (
+                math.log(w2) - math.log(w1)) / (math.log(e2) - math.log(e1))
+            return f"{math.exp(lw):.0f}"
+    if pts and pts[0][1] <= target:
+        return f"<= {pts[0][0]:.0f}"
+    return "> " + (f"{pts[-1][0]:.0f}" if pts else "-")
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--full", action="store_true", help="also h = 0.3125 ms (twice the time)")
+    main(ap.parse_args().full)
