@@ -286,7 +286,7 @@ def order_residual(tab, p, weights=None, coupled=True):
          (1, 1): tab.AI}
     bw = (tab.b, tab.bI) if weights is None else weights
     worst = 0.0
-    for n, ts in rooted_trees(p).items():
+    for ts in rooted_trees(p).values():
         for t in ts:
             for ct in _colourings(t):
                 if not coupled and _has_mixed(ct):
@@ -417,11 +417,11 @@ def imposed_scenario(kind, t1=2.0):
     'eight' (3 sin wt, 2 sin 2wt), period 1.5 s; both from rest in z (a start at z = 0)."""
     if kind == "circle":
         w = 2 * math.pi
-        path = lambda t: (3 * math.cos(w * t) - 3, 3 * math.sin(w * t),  # noqa: E731
+        path = lambda t: (3 * math.cos(w * t) - 3, 3 * math.sin(w * t),
                           -3 * w * math.sin(w * t), 3 * w * math.cos(w * t))
     else:
         w = 2 * math.pi / 1.5
-        path = lambda t: (3 * math.sin(w * t), 2 * math.sin(2 * w * t),  # noqa: E731
+        path = lambda t: (3 * math.sin(w * t), 2 * math.sin(2 * w * t),
                           3 * w * math.cos(w * t), 4 * w * math.cos(2 * w * t))
     return Scenario(f"imposed-{kind}", 0.0, t1, y0=[0.0] * 6, mode0=STICK, imposed=path)
 
@@ -867,8 +867,8 @@ def run_case(tab, form, sc, segs, states, h):
     e_z = math.hypot(a[4] - b[4], a[5] - b[5])
     bad = not all(math.isfinite(x) for x in a[:6]) or e_u > 1.0
     nan = float("nan")
-    return dict(e_u=nan if bad else e_u, e_v=nan if bad else e_v, e_z=nan if bad else e_z,
-                e_f=nan if bad else e_f, cnt=cnt, wall=wall)
+    return {"e_u": nan if bad else e_u, "e_v": nan if bad else e_v,
+            "e_z": nan if bad else e_z, "e_f": nan if bad else e_f, "cnt": cnt, "wall": wall}
 
 
 def _integrate_from(tab, form, sc, segs, h, y0):
@@ -897,7 +897,7 @@ def _fmt(e):
 
 def _orders(errs):
     out = []
-    for a, b in zip(errs, errs[1:]):
+    for a, b in itertools.pairwise(errs):
         out.append(math.log2(a / b) if (math.isfinite(a) and math.isfinite(b) and a > 0 and b > 0)
                    else float("nan"))
     return out
@@ -1039,7 +1039,7 @@ def summary(scens, methods, hs, results):
 def costs(scens, methods, hs, results):
     print("\n## 3c. Cost: evaluations per step, and the structure's force evaluations per "
           "simulated second for a given force error (log-log interpolation over h)\n")
-    sc = [s for s in scens if s.name == "eight"][0]
+    sc = next(s for s in scens if s.name == "eight")
     print(f"On '{sc.name}'.\n")
     print("| method | f_E / step | bearing rates / step | 2x2 Newton solves / step "
           "| f_E per s for e_f <= 1e-3 kip | <= 1e-5 kip | <= 1e-7 kip |")
@@ -1061,7 +1061,7 @@ def _work_for(sc, name, hs, results, target, dur):
         r = results[(sc.name, name, h)]
         if math.isfinite(r["e_f"]) and r["e_f"] > 0:
             pts.append((r["cnt"].f_e / dur, r["e_f"]))
-    for (w1, e1), (w2, e2) in zip(pts, pts[1:]):
+    for (w1, e1), (w2, e2) in itertools.pairwise(pts):
         if e1 >= target >= e2 and e1 > e2:
             lw = math.log(w1) + (math.log(target) - math.log(e1)) * (
                 math.log(w2) - math.log(w1)) / (math.log(e2) - math.log(e1))
