@@ -107,7 +107,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from femoat import checks as _checks
-from femoat.bearings import registry
+from femoat.bearings.faces import BearingFaces
 from femoat.compilation.jit import njit
 
 KEY = "lrb"
@@ -582,7 +582,7 @@ def plan_turn_direction(s):
 
 
 @dataclass(frozen=True)
-class LeadRubberBearing:
+class LeadRubberBearing(BearingFaces):
     """Lead-rubber bearing (biaxial Bouc-Wen), on one axis and in plan: one class for both faces.
 
     Defaults: the isolation of the paper building (W = 33 kip, its four masses on one bearing):
@@ -654,23 +654,6 @@ class LeadRubberBearing:
     def params(self) -> np.ndarray:
         return np.array([self.Q_d, self.K_d, self.K_u, self.u_y, self.beta, self.gamma,
                          self.eta], dtype=np.float64)
-
-    def initial_state(self) -> np.ndarray:
-        """Virgin committed state ``s`` on one axis: at the centre, z = 0."""
-        return np.zeros(N_STATE_AXIS)
-
-    def initial_state_axis(self) -> np.ndarray:
-        """Virgin committed state ``s`` on one axis: at the centre, z = 0."""
-        return np.zeros(N_STATE_AXIS)
-
-    def initial_state_plan(self) -> np.ndarray:
-        """Virgin committed state ``s`` in plan: at the centre, z = 0, no turning direction."""
-        return np.zeros(N_STATE_PLAN)
-
-    @property
-    def code(self):
-        """The material code of this bearing on one axis (:mod:`femoat.bearings.registry`)."""
-        return registry.axis_code(self)
 
 
 AXIS_CLASS = LeadRubberBearing

@@ -112,7 +112,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from femoat import checks as _checks
-from femoat.bearings import registry
+from femoat.bearings.faces import BearingFaces
 from femoat.compilation.jit import njit
 
 KEY = "tfp"
@@ -383,7 +383,7 @@ def axis_energy(p, s):
 
 
 @dataclass(frozen=True)
-class TripleFrictionPendulum:
+class TripleFrictionPendulum(BearingFaces):
     """Triple friction-pendulum bearing, on one axis and in plan (one class: the 1D bearing is the
     plan bearing on one axis). Defaults: a typical bearing, see below.
 
@@ -507,23 +507,6 @@ class TripleFrictionPendulum:
             p += [self.W / r, mu * self.W, uyi, gap]
         p.append(self.capacity)
         return np.array(p, dtype=np.float64)
-
-    def initial_state(self) -> np.ndarray:
-        """Virgin committed state ``s`` on one axis (the plan state): at rest, centred, z = 0."""
-        return np.zeros(N_STATE_AXIS)
-
-    def initial_state_axis(self) -> np.ndarray:
-        """Virgin committed state ``s`` on one axis: at rest, centred, z = 0."""
-        return np.zeros(N_STATE_AXIS)
-
-    def initial_state_plan(self) -> np.ndarray:
-        """Virgin committed state ``s`` in plan: at rest, centred, z = 0."""
-        return np.zeros(N_STATE_PLAN)
-
-    @property
-    def code(self):
-        """The material code of this bearing on one axis (:mod:`femoat.bearings.registry`)."""
-        return registry.axis_code(self)
 
 
 AXIS_CLASS = TripleFrictionPendulum
