@@ -481,6 +481,138 @@ def test_circle_error_is_first_order_in_the_step():
     assert np.all((ratios > 1.8) & (ratios < 2.2)), (errors, ratios)
 
 
+# ------------------------------------------------------------------------ the path of a step
+
+
+def orbit(radius, step, eight=False):
+    """Step ends on a spiral from rest onto a circle of ``radius`` [in] (or a figure eight of
+    that size), growing over two turns then steady for two, with their exact velocities [in/s]
+    at unit angular rate: (points (n, 2), velocities (n, 2), the steps' durations tau [s] (n,)),
+    about ``step`` [in] of orbit per step."""
+    dth = step / (1.21 * radius if eight else radius)
+    th = dth * np.arange(1, round(8.0 * np.pi / dth) + 1)
+    g = np.minimum(th / (4.0 * np.pi), 1.0)
+    a = radius * smoothstep(g)
+    da = np.where(th < 4.0 * np.pi, radius * 6.0 * g * (1.0 - g) / (4.0 * np.pi), 0.0)
+    if eight:
+        u = np.column_stack([a * np.sin(th), 0.5 * a * np.sin(2.0 * th)])
+        v = np.column_stack([da * np.sin(th) + a * np.cos(th),
+                             0.5 * da * np.sin(2.0 * th) + a * np.cos(2.0 * th)])
+    else:
+        u = np.column_stack([a * np.cos(th), a * np.sin(th)])
+        v = np.column_stack([da * np.cos(th) - a * np.sin(th), da * np.sin(th) + a * np.cos(th)])
+    return u, v, np.full(len(th), dth)
+
+
+def drive_path(b, u, v, tau, pieces=None):
+    """Each step from the previous point (rest at the centre first) along its Hermite path to
+    the next point of ``u`` with the velocities ``v`` over ``tau``: the trial's force (n, 2),
+    then the commit. ``pieces`` None: the plan kernels (:data:`tfp.PIECES`); else the path cut
+    into that many pieces (1: the chord)."""
+    p, s = b.params(), b.initial_state_plan()
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    forces = np.zeros((len(u), 2))
+    u0 = v0 = np.zeros(2)
+    for i in range(len(u)):
+        args = (*u0, *v0, *u[i], *v[i], tau[i])
+        if pieces is None:
+            tfp.plan_trial(p, s, *args, f, k, c)
+            forces[i] = f
+            tfp.plan_commit(p, s, *args)
+        else:
+            r = tfp._path(p, s, *args, pieces)
+            forces[i] = r[:2]
+            s[:12] = r[5:17]
+        u0, v0 = u[i], v[i]
+    return forces
+
+
+@pytest.mark.parametrize(("radius", "step", "eight"), [(4.0, 0.1, False), (4.0, 0.5, False),
+                                                       (15.0, 0.5, False), (4.0, 0.2, True)],
+                         ids=["II-0.1", "II-0.5", "III-0.5", "eight-II-0.2"])
+def test_a_curved_step_follows_its_path(radius, step, eight):
+    # On an orbit of curved steps (imposed Hermite paths 0.1-0.5 in long, turns of 1.4° to 7°),
+    # against the same paths cut into 256 pieces: the chord (one return per step) is off by Y,
+    # 1.7 to 2.4 times the inner friction force times the step's turn (measured), and the plan
+    # kernels' PIECES pieces by Y/PIECES: each piece's return is a backward-Euler step of the
+    # friction rule, whose friction directions lag by half the piece's turn, an error of first
+    # order in the piece (measured ratios 0.247 on the circles, 0.26 on the figure eight, for 4
+    # pieces; the reference itself is off by Y/256: within 4e-3·Y of 1024 pieces).
+    b = BEARING
+    u, v, tau = orbit(radius, step, eight)
+    reference = drive_path(b, u, v, tau, 256)
+    chord = np.max(np.hypot(*(drive_path(b, u, v, tau, 1) - reference).T))
+    path = np.max(np.hypot(*(drive_path(b, u, v, tau) - reference).T))
+    turn = step / radius
+    assert 1.0 < chord / (b.mu1 * b.W * turn) < 3.0
+    assert 0.8 / tfp.PIECES < path / chord < 1.25 / tfp.PIECES, path / chord
+
+
+def test_a_straight_step_is_the_chord_bit_for_bit():
+    # Along one axis with velocities along it (the solver's plan run under one component), and
+    # at tau = 0 whatever the velocities, the path is the chord: the plan kernels are the one-
+    # axis kernels to the bit (as at tau = 0 in test_along_one_axis_...), and a trial at tau = 0
+    # is the series solve at its end point.
+    b = BEARING
+    p = b.params()
+    u = cyclic_path(np.random.default_rng(5), n=1500)
+    f1, k1, s_axis = drive_axis(b, u)
+    velocity = np.gradient(u, 0.01)
+    for axis in (0, 1):
+        s = b.initial_state_plan()
+        f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+        prev = np.zeros(4)
+        for i, (ui, vi) in enumerate(zip(u, velocity)):
+            now = np.zeros(4)
+            now[axis], now[2 + axis] = ui, vi
+            args = (*prev[:2], *prev[2:], *now[:2], *now[2:], 0.01)
+            tfp.plan_trial(p, s, *args, f, k, c)
+            assert f[axis] == f1[i] and k[axis, axis] == k1[i] and f[1 - axis] == 0.0
+            tfp.plan_commit(p, s, *args)
+            prev = now
+        if axis == 0:
+            np.testing.assert_array_equal(s[:12], s_axis[:12])
+    # tau = 0 on a curved orbit: the chord
+    uo, vo, _ = orbit(4.0, 0.2)
+    s = b.initial_state_plan()
+    for i in range(1, 300):
+        tfp.plan_commit(p, s, *uo[i - 1], *vo[i - 1], *uo[i], *vo[i], 0.2 / 4.0)
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    tfp.plan_trial(p, s, *uo[299], *vo[299], *uo[300], *vo[300], 0.0, f, k, c)
+    r = tfp.series_solve(p, s, *uo[300])
+    assert (f[0], f[1], k[0, 0], k[0, 1], k[1, 1]) == r[:5]
+
+
+def test_a_path_is_pieces_of_series_solves_in_the_scratch_slots():
+    # A curved step is PIECES series solves, each from the previous one's end state, at equal
+    # steps of the Hermite parameter: the commit is the walk by hand (chord commits at those
+    # points) to the bit, the trial's force the last piece's; a trial writes only the scratch
+    # slots (the committed part of the state is unchanged).
+    b = BEARING
+    p = b.params()
+    uo, vo, tau = orbit(4.0, 0.3)
+    s = b.initial_state_plan()
+    for i in range(1, 200):
+        tfp.plan_commit(p, s, *uo[i - 1], *vo[i - 1], *uo[i], *vo[i], tau[i])
+    committed = s.copy()
+    args = (*uo[199], *vo[199], *uo[200], *vo[200], tau[200])
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    tfp.plan_trial(p, s, *args, f, k, c)
+    np.testing.assert_array_equal(s[:12], committed[:12])
+    by_hand = committed.copy()
+    for n in range(1, tfp.PIECES):
+        q = [tfp._hermite(n / tfp.PIECES, tau[200], uo[199, j], vo[199, j], uo[200, j],
+                          vo[200, j]) for j in (0, 1)]
+        tfp.plan_commit(p, by_hand, 0.0, 0.0, 0.0, 0.0, *q, 0.0, 0.0, 0.0)
+    r = tfp.series_solve(p, by_hand, *uo[200])
+    assert (f[0], f[1], k[0, 0], k[0, 1], k[1, 1]) == r[:5]
+    tfp.plan_commit(p, by_hand, 0.0, 0.0, 0.0, 0.0, *uo[200], 0.0, 0.0, 0.0)
+    tfp.plan_commit(p, s, *args)
+    np.testing.assert_array_equal(s[:12], by_hand[:12])
+    chord = tfp.series_solve(p, committed, *uo[200])
+    assert np.all(np.isfinite(f)) and np.hypot(f[0] - chord[0], f[1] - chord[1]) > 0.0
+
+
 # ---------------------------------------------------------------------------- OpenSees twin
 
 

@@ -9,7 +9,8 @@ is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
   units; they may be one class), each with ``params()``, ``initial_state_axis()``,
   ``initial_state_plan()``, ``yield_deformation`` [in] and ``capacity`` [in];
 * compiled kernels (numba, no allocation), each from the committed state ``s``, which only the
-  commits modify:
+  commits modify (a kind may keep scratch slots after it in ``s``, which its plan trials write
+  while they walk a step's path: the triple friction pendulum's):
 
   - ``axis_trial(p, s, u, v) -> (f, df/du, df/dv)``, ``axis_commit(p, s, u, v)``,
     ``axis_energy(p, s)``: the bearing on one axis (u [in], v [in/s], f [kip]);
