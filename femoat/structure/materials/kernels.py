@@ -22,6 +22,7 @@ import numpy as np
 
 from femoat.bearings import registry
 from femoat.bearings.dispatch import bearing_axis_commit, bearing_axis_energy, bearing_axis_trial
+from femoat.bearings.friction_pendulum import axis_commit as fp_axis_commit
 from femoat.bearings.friction_pendulum import axis_trial as fp_axis_trial
 from femoat.compilation.jit import njit
 from femoat.structure.materials import bilinear, elastic, imk
@@ -65,6 +66,12 @@ def _other_bearing_trial(code, p, s, u, v):
 
 
 @njit(cache=True)
+def _other_bearing_commit(code, p, s, u, v):
+    """The bearing kinds after the friction pendulum, through the dispatcher."""
+    bearing_axis_commit(code - BEARING, p, s, u, v)
+
+
+@njit(cache=True)
 def material_trial(code, p, s, u, v):
     """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at trial (u [in], v [in/s])."""
     if code == ELASTIC:
@@ -89,8 +96,10 @@ def material_commit(code, p, s, u, v):
         bilinear_commit(p, s, u)
     elif code == IMK:
         imk_commit(p, s, u)
-    elif code >= BEARING:
-        bearing_axis_commit(code - BEARING, p, s, u, v)
+    elif code == BEARING:  # the single friction pendulum, kind 0: called directly
+        fp_axis_commit(p, s, u, v)
+    elif code > BEARING:
+        _other_bearing_commit(code, p, s, u, v)
 
 
 @njit(cache=True)
