@@ -56,6 +56,20 @@ def hermite_abs_max(t, x, v):
     return float(peak[0]) if one else [float(p) for p in peak]
 
 
+def smooth_intervals(closed, closes_smoothly):
+    """Which intervals between samples the open phase integrated smoothly: every contact open
+    at the start, and at the end too or closing there under a law whose force vanishes at
+    δ = 0⁺ (``closes_smoothly``, per contact; a dashpot law's force jumps on at closure).
+    ``closed`` (m, contacts): 1 while a contact episode is open. Returns (m − 1,) booleans (the
+    rule of the solver's running peaks, ``femoat.integration.recording.peaks``)."""
+    closed = np.asarray(closed).astype(bool)
+    if closed.ndim != 2 or closed.shape[1] == 0:
+        return np.ones(max(closed.shape[0] - 1, 0), dtype=bool)
+    open_now = ~closed.any(axis=1)
+    jumps = closed & ~np.asarray(closes_smoothly, dtype=bool)[None, :]
+    return open_now[:-1] & (open_now[1:] | ~jumps[1:].any(axis=1))
+
+
 def quintic_accel_abs_max(t, u, v, a, ag, smooth):
     """max |a(t) + a_g(t)| per column, a(t) the second derivative of the quintic Hermite
     interpolant through (u, u̇ = v, ü = a) at both ends of every interval marked ``smooth``

@@ -99,10 +99,27 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     return result
 
 
-PLAN_METHOD = "newmark"
-"""The default method of a plan run: the fifth-order open phase is refused on a plan friction
-pendulum (:func:`femoat.integration.solve.integrate` says why). Its accuracy at the default rtol
-against a converged run is measured by ``benchmarks/plan_speed.py``."""
+PLAN_METHOD = "ark5"
+"""The default method of a plan run: the fifth-order step that carries each sliding bearing's
+friction state (:mod:`femoat.integration.methods.ark5`), where every bearing kind of the model
+declares a rate form; else :data:`PLAN_METHOD_PATH` (:func:`plan_method`). Its accuracy at the
+default rtol against a converged run is measured by ``benchmarks/plan_speed.py``."""
+
+PLAN_METHOD_PATH = "newmark"
+"""The default method of a plan run on a bearing kind without a rate form (its friction state
+follows each step's path: first order in an explicit step's stages, so the implicit step)."""
+
+
+def plan_method(model):
+    """The default method of a plan run of ``model`` (a :class:`~femoat.plan.PlanModel`):
+    :data:`PLAN_METHOD` if its isolator kind declares a rate form, else
+    :data:`PLAN_METHOD_PATH`."""
+    from femoat.bearings import registry
+
+    kind = registry.kind_of(model.building.isolator)
+    if kind is None:  # no plan bearing (an elastic isolator): ark5 is dp5 there
+        return PLAN_METHOD
+    return PLAN_METHOD if registry.has_rate_form(registry.kinds()[kind]) else PLAN_METHOD_PATH
 
 
 def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels,
@@ -116,7 +133,7 @@ def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, c
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
         duration = pair.duration + extra_time
-    integ = integrator or Integrator(method=PLAN_METHOD)
+    integ = integrator or Integrator(method=plan_method(model))
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)

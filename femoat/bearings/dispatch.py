@@ -17,6 +17,11 @@ from femoat.bearings.friction_pendulum import (
     plan_energy as _plan_energy_0,
     plan_branch as _plan_branch_0,
     plan_turn_direction as _plan_turn_direction_0,
+    plan_rate_active as _plan_rate_active_0,
+    plan_rate_state as _plan_rate_state_0,
+    plan_rate as _plan_rate_0,
+    plan_rate_force as _plan_rate_force_0,
+    plan_rate_commit as _plan_rate_commit_0,
 )
 from femoat.bearings.lead_rubber import (
     axis_trial as _axis_trial_1,
@@ -150,3 +155,43 @@ def bearing_plan_turn_direction(kind, s):
     if kind == 2:
         return _plan_turn_direction_2(s)
     return (0.0, 0.0)
+
+
+@njit(cache=True)
+def bearing_plan_rate_active(kind, p, s, vx, vy):
+    """:func:`plan_rate_active` of bearing kind ``kind``."""
+    if kind == 0:
+        return _plan_rate_active_0(p, s, vx, vy)
+    return False
+
+
+@njit(cache=True)
+def bearing_plan_rate_state(kind, s):
+    """:func:`plan_rate_state` of bearing kind ``kind``."""
+    if kind == 0:
+        return _plan_rate_state_0(s)
+    return (np.nan, np.nan)
+
+
+@njit(cache=True)
+def bearing_plan_rate(kind, p, zx, zy, vx, vy):
+    """:func:`plan_rate` of bearing kind ``kind``."""
+    if kind == 0:
+        return _plan_rate_0(p, zx, zy, vx, vy)
+    return (np.nan, np.nan, np.nan, np.nan, np.nan, np.nan)
+
+
+@njit(cache=True)
+def bearing_plan_rate_force(kind, p, s, ux, uy, vx, vy, zx, zy, f, k, c):
+    """:func:`plan_rate_force` of bearing kind ``kind``."""
+    if kind == 0:
+        _plan_rate_force_0(p, s, ux, uy, vx, vy, zx, zy, f, k, c)
+        return
+
+
+@njit(cache=True)
+def bearing_plan_rate_commit(kind, p, s, ux, uy, vx, vy, zx, zy):
+    """:func:`plan_rate_commit` of bearing kind ``kind``."""
+    if kind == 0:
+        _plan_rate_commit_0(p, s, ux, uy, vx, vy, zx, zy)
+        return

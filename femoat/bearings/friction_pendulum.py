@@ -322,6 +322,89 @@ def plan_return_commit(p, s, ux, uy, vx, vy):
     plan_commit(p, s, s[_UCX], s[_UCY], 0.0, 0.0, ux, uy, vx, vy, 0.0)
 
 
+# ---- in plan, the rate form (the coupled-friction step, femoat.integration.methods.ark5) -------
+
+
+@njit(cache=True)
+def plan_rate_active(p, s, vx, vy):
+    """True when the committed state slides (z on the rim) and the velocity (vx, vy) [in/s] keeps
+    loading it (z·v > 0): over a step from here z is a state with the rate :func:`plan_rate`."""
+    zx, zy = s[_ZCX], s[_ZCY]
+    return zx * zx + zy * zy >= 1.0 - 1e-9 and zx * vx + zy * vy > 0.0
+
+
+@njit(cache=True)
+def plan_rate_state(s):
+    """The committed rate-form variable: z (z_x, z_y) [-]."""
+    return s[_ZCX], s[_ZCY]
+
+
+@njit(cache=True)
+def plan_rate(p, zx, zy, vx, vy):
+    """(g_x, g_y, ∂g_x/∂z_x, ∂g_x/∂z_y, ∂g_y/∂z_x, ∂g_y/∂z_y): the sliding rule's rate
+    ż = g(z, v) = (v − (z·v)·z)/u_y [1/s] at z and the velocity (vx, vy) [in/s], and its
+    Jacobian ∂g/∂z = −((z·v)·I + z·vᵀ)/u_y. On the rim the rule of :func:`_straight`; off it
+    |z| is drawn back to 1 at the rate 2(z·v)/u_y. Along a line through z (v ∥ z, |z| = 1) the
+    rate is exactly zero."""
+    u_y = p[_UY]
+    zv = zx * vx + zy * vy
+    return ((vx - zv * zx) / u_y, (vy - zv * zy) / u_y,
+            -(zv + zx * vx) / u_y, -(zx * vy) / u_y, -(zy * vx) / u_y, -(zv + zy * vy) / u_y)
+
+
+@njit(cache=True)
+def _moved_back(p, s, ux, uy):
+    """Whether the trial (ux, uy) [in] from the committed state is inside the disk: the bearing
+    has moved back and unloads (sticks) there, whatever a carried z says."""
+    tx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
+    ty = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
+    return tx * tx + ty * ty <= 1.0
+
+
+@njit(cache=True)
+def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
+    """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` [kip·s/in] (2, 2) in place at
+    (ux, uy) [in], (vx, vy) [in/s] with the friction state z = (zx, zy) [-] given (a stage's):
+    f = (W/R)·u + μ(v)·W·z (z a state: no friction stiffness). A trial that is back inside the
+    disk from the committed state ``s`` (the stage moved back) reads the radial return instead,
+    as the one-axis clip does (along a line: the one-axis force to the bit, whatever the signs
+    of a tableau's coefficients)."""
+    if _moved_back(p, s, ux, uy):
+        plan_return_trial(p, s, ux, uy, vx, vy, f, k, c)
+        return
+    w = p[_W]
+    k_r = w / p[_R]
+    mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
+    f[0] = k_r * ux + mu * w * zx
+    f[1] = k_r * uy + mu * w * zy
+    k[0, 0] = k_r
+    k[0, 1] = 0.0
+    k[1, 0] = 0.0
+    k[1, 1] = k_r
+    c[0, 0] = w * zx * dmu_x
+    c[0, 1] = w * zx * dmu_y
+    c[1, 0] = w * zy * dmu_x
+    c[1, 1] = w * zy * dmu_y
+
+
+@njit(cache=True)
+def plan_rate_commit(p, s, ux, uy, vx, vy, zx, zy):
+    """Commit the end (ux, uy), (vx, vy) of a step that carried z as a state, z = (zx, zy) its
+    end value: put on the rim (the rate form leaves |z| − 1 at the step's truncation error; on
+    the rim the branch and turn searches see a sliding bearing); a trial back inside the disk
+    commits the radial return (as :func:`plan_rate_force` reads it)."""
+    if _moved_back(p, s, ux, uy):
+        plan_return_commit(p, s, ux, uy, vx, vy)
+        return
+    norm = np.sqrt(zx * zx + zy * zy)
+    s[_UCX] = ux
+    s[_UCY] = uy
+    s[_ZCX] = zx / norm
+    s[_ZCY] = zy / norm
+    s[_VCX] = vx
+    s[_VCY] = vy
+
+
 @njit(cache=True)
 def plan_energy(p, s):
     """Recoverable energy [kip·in] at the committed state (module docstring)."""

@@ -48,6 +48,19 @@ KERNELS = {
 }
 """The kernels every kind provides, and what the dispatcher returns for an unknown kind."""
 
+RATE_KERNELS = {
+    "bearing_plan_rate_active": ("plan_rate_active", "p, s, vx, vy", "False"),
+    "bearing_plan_rate_state": ("plan_rate_state", "s", "(np.nan, np.nan)"),
+    "bearing_plan_rate": ("plan_rate", "p, zx, zy, vx, vy",
+                          "(np.nan, np.nan, np.nan, np.nan, np.nan, np.nan)"),
+    "bearing_plan_rate_force": ("plan_rate_force", "p, s, ux, uy, vx, vy, zx, zy, f, k, c",
+                                None),
+    "bearing_plan_rate_commit": ("plan_rate_commit", "p, s, ux, uy, vx, vy, zx, zy", None),
+}
+"""The rate form a kind may declare (all five or none; :mod:`femoat.bearings`' docstring): its
+friction state as an ODE for the coupled-friction step (:mod:`femoat.integration.methods.ark5`).
+A kind without it answers ``plan_rate_active`` False (its plan trials follow the step's path)."""
+
 PYTHON_NAMES = ("KEY", "N_PARAMS", "N_STATE_AXIS", "N_STATE_PLAN", "AXIS_CLASS", "PLAN_CLASS")
 """The names every kind provides on the Python side: its scenario key, its array widths and the
 dataclasses of its one-axis and plan faces (they may be one class)."""
@@ -124,7 +137,17 @@ def check_kind(name):
     if missing:
         raise ValueError(f"bearing kind {name}: missing {', '.join(missing)}; a bearing kind "
                          "provides every name femoat.bearings' docstring lists.")
+    rate = [v[0] for v in RATE_KERNELS.values()]
+    given = [k for k in rate if hasattr(mod, k)]
+    if given and len(given) != len(rate):
+        raise ValueError(f"bearing kind {name}: a rate form is all of {', '.join(rate)}; "
+                         f"it has only {', '.join(given)}.")
     return mod
+
+
+def has_rate_form(name):
+    """Whether the kind module ``name`` declares the rate form (:data:`RATE_KERNELS`)."""
+    return hasattr(importlib.import_module(name), RATE_KERNELS["bearing_plan_rate"][0])
 
 
 def generate(names=None):
@@ -140,18 +163,23 @@ def generate(names=None):
            'import numpy as np',
            '',
            'from femoat.bearings import registry as _registry']
+    rated = [has_rate_form(name) for name in names]
     for k, name in enumerate(names):
         out.append(f"from {name} import (")
         out += [f"    {v[0]} as _{v[0]}_{k}," for v in KERNELS.values()]
+        if rated[k]:
+            out += [f"    {v[0]} as _{v[0]}_{k}," for v in RATE_KERNELS.values()]
         out.append(")")
     out.append('from femoat.compilation.jit import njit')
     listed = "".join(f"\n    {name!r}," for name in names)
     out += ['', f"KINDS = ({listed}\n)", '"""The kinds this dispatcher was generated for."""', '',
             '_registry.check_dispatcher(KINDS)']
-    for fn, (own, args, missing) in KERNELS.items():
+    for fn, (own, args, missing) in (*KERNELS.items(), *RATE_KERNELS.items()):
         out += ['', '', '@njit(cache=True)', f"def {fn}(kind, {args}):",
                 f'    """:func:`{own}` of bearing kind ``kind``."""']
         for k in range(len(names)):
+            if fn in RATE_KERNELS and not rated[k]:
+                continue
             call = f"_{own}_{k}({args})"
             out += [f"    if kind == {k}:", f"        return {call}" if missing else
                     f"        {call}\n        return"]

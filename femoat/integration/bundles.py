@@ -17,8 +17,11 @@ for every run: :func:`femoat.integration.driver.run_chunk` takes one of each).
   :class:`~femoat.integration.settings.Integrator`), the error scales and the limit rows.
 * :class:`Work`: scratch arrays of a step (trial kinematics, forces, tangents, the linear system,
   the ground acceleration at the step's end ``ag1`` and at a stage ``ag_stage``;
-  for the explicit step of :mod:`femoat.integration.methods.dp5` its stages ``kv``, ``ka``,
-  error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators).
+  for the explicit steps (:mod:`femoat.integration.methods.dp5`, ``ark5``) their stages ``kv``,
+  ``ka``, error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators; for
+  the coupled-friction step the plan bearings that carry their friction state ``b_rate`` (flag
+  per bearing, cleared before every step attempt and at the commit), that state at the current
+  stage ``bz`` (nb, 2) and its stage rates ``kz`` (stages, nb, 2)).
 * :class:`Recorder`: the history buffers of :mod:`~femoat.integration.recording.channels` (one
   row per recorded sample; sample k in row k modulo their length: a ring of
   ``recorder.RING_ROWS`` rows when the run keeps no history; a channel with zero columns is not
@@ -75,5 +78,5 @@ Settings = namedtuple("Settings", [
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "bf", "cf",
                            "cd", "cft", "ag1", "ag_stage", "k22",
                            "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
-                           "wscratch", "s_tmp"])
+                           "wscratch", "s_tmp", "b_rate", "bz", "kz"])
 Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])

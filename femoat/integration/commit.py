@@ -1,7 +1,7 @@
 """Accepting a step: energies, element and contact states, the episodes a step opens or
 closes, the kinematics."""
 
-from femoat.bearings.dispatch import bearing_plan_commit
+from femoat.bearings.dispatch import bearing_plan_commit, bearing_plan_rate_commit
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_commit
 from femoat.integration.codes import E_INPUT, E_VISCOUS
@@ -55,8 +55,14 @@ def accept(hh, ag1, landing, explicit_step, model, state, settings, work):
         ix, iy = b_dofs[e, 0], b_dofs[e, 1]
         state.b_W[e] += 0.5 * ((b_f[e, 0] + w_bf[e, 0]) * (work.u[ix] - u[ix])
                                + (b_f[e, 1] + w_bf[e, 1]) * (work.u[iy] - u[iy]))
-        bearing_plan_commit(model.b_kind[e], model.b_P[e], state.b_S[e], u[ix], u[iy], v[ix],
-                            v[iy], work.u[ix], work.u[iy], work.v[ix], work.v[iy], hh)
+        if work.b_rate[e] != 0:  # the step carried its friction state (ark5): commit it
+            bearing_plan_rate_commit(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix],
+                                     work.u[iy], work.v[ix], work.v[iy], work.bz[e, 0],
+                                     work.bz[e, 1])
+            work.b_rate[e] = 0
+        else:
+            bearing_plan_commit(model.b_kind[e], model.b_P[e], state.b_S[e], u[ix], u[iy],
+                                v[ix], v[iy], work.u[ix], work.u[iy], work.v[ix], work.v[iy], hh)
         b_f[e, 0] = w_bf[e, 0]
         b_f[e, 1] = w_bf[e, 1]
     toggled = False

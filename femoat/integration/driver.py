@@ -25,8 +25,6 @@ with nonlinear two-node elements e (node j = −1 is the ground) and contacts c 
 δ_c = b_c·u − gap_c (compressive force f_c ≥ 0 pushes the bodies apart).
 """
 
-import numpy as np
-
 from femoat.compilation.jit import njit
 from femoat.integration import methods
 from femoat.integration.codes import (
@@ -95,6 +93,8 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         closed_now = any_closed(c_closed)
         phase = methods.CONTACT if closed_now else open_method
         explicit_now = methods.EXPLICIT[phase]
+        for e in range(work.b_rate.size):  # no bearing carries a friction state until a step
+            work.b_rate[e] = 0             # of the coupled-friction method says so
         solved, err = methods.step(phase, hh, ag1, closed_now, model, state, settings, work)
         if not solved:
             h, failed = methods.retry(phase, t, hh, h, model, state, settings, work, rec)
@@ -111,9 +111,10 @@ def run_chunk(t_stop, model, state, settings, work, rec):
             h = declare_event(event_now, t, hh, h, model, state, settings, work, rec)
             continue
         if theta > 1.0 and not shortened:
-            theta_k = find_kink(hh, model, state, work)
+            fine = methods.FINE_LANDING[phase]
+            theta_k = find_kink(hh, model, state, work, fine)
             if explicit_now:
-                theta_k = min(theta_k, find_turn(hh, model, state, work))
+                theta_k = min(theta_k, find_turn(hh, model, state, work, fine))
             if theta_k < 1.0 and hh * theta_k >= hmin:
                 stats[S_REJECT_ERR] += 1
                 h = hh * theta_k

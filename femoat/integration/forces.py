@@ -11,7 +11,7 @@ import numpy as np
 
 from femoat.compilation.jit import njit
 from femoat.contact.kernels import step_force
-from femoat.bearings.dispatch import bearing_plan_trial
+from femoat.bearings.dispatch import bearing_plan_rate_force, bearing_plan_trial
 from femoat.structure.materials.kernels import material_trial
 
 
@@ -105,7 +105,7 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
 
     Element states, bearing states and contact histories are the ``state``'s committed ones
     (read only, as its open episodes ``c_closed``); the forces go to ``out``
-    (:class:`Outputs`); ``work.k22`` is (2, 2, 2) scratch. A plan bearing follows the path of
+    (:class:`Outputs`); ``work.k22`` is (3, 2, 2) scratch. A plan bearing follows the path of
     the step from the committed state (``u0``, ``v0`` at its start, duration ``tau`` [s]; 0 at
     the committed state itself). Rows and columns from ``nd`` on are treated as diagonal
     (uncoupled wall modes while no contact carries force); ``nd = n`` is the general dense case.
@@ -137,7 +137,8 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
             CT[i, i] = C[i, i]
     # the plan bearings first: the isolator is the first element of a 1D model (the same sums)
     if b_f.shape[0] > 0:
-        _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau)
+        _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau,
+                       work.b_rate, work.bz)
     for e in range(el_code.size):
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
@@ -188,15 +189,23 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
 
 
 @njit(cache=True)
-def _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau):
+def _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau, b_rate,
+                   b_z):
     """Each plan bearing's force and tangents at (u, v) from its committed state, scattered into
-    F, KT, CT (a function of its own: the kinds' kernels stay out of the callers' code)."""
+    F, KT, CT (a function of its own: the kinds' kernels stay out of the callers' code). A
+    bearing flagged in ``b_rate`` (a step of the coupled-friction method carries its friction
+    state) takes its state from ``b_z`` (the rate form), every other one follows the step's
+    path from its committed state."""
     for e in range(b_f.shape[0]):
         kb, cb = k22[0], k22[1]
         dofs = model.b_dofs[e]
         ix, iy = dofs[0], dofs[1]
-        bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix], v0[iy],
-                           u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
+        if b_rate[e] != 0:
+            bearing_plan_rate_force(model.b_kind[e], model.b_P[e], b_S[e], u[ix], u[iy], v[ix],
+                                    v[iy], b_z[e, 0], b_z[e, 1], b_f[e], kb, cb)
+        else:
+            bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix],
+                               v0[iy], u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)
         _scatter(dofs, b_f[e], kb, cb, F, KT, CT, want_tangent)
 
 

@@ -3,7 +3,13 @@ shortened to end just past the kink (:func:`find_kink`), so that a sample sits o
 the force; an explicit step, whose stages are all evaluated from the committed state, also
 lands on the turning points where a yielding element unloads (:func:`find_turn`)."""
 
-from femoat.bearings.dispatch import bearing_plan_branch, bearing_plan_turn_direction
+import numpy as np
+
+from femoat.bearings.dispatch import (
+    bearing_plan_branch,
+    bearing_plan_rate_state,
+    bearing_plan_turn_direction,
+)
 from femoat.compilation.jit import njit
 from femoat.integration.interpolants import crossing, hermite
 from femoat.structure.materials.kernels import material_commit, material_trial
@@ -20,6 +26,14 @@ KINK_BISECTIONS = 12
 
 KINK_RESOLUTION = 2.0 ** -KINK_BISECTIONS
 """A kink closer than this fraction to the start of a step is not landed on."""
+
+
+FINE_BISECTIONS = 24
+"""Bisections locating a plan bearing's change of branch off a line in a step of a method that
+carries the friction state (``methods.FINE_LANDING``): the sliver of the step past the kink
+follows the stage paths (first order in the sliver), so its error is (2^-24)², not (2^-12)², of
+the step's; on a line the stage path is exact and the landing stays the one-axis element's."""
+FINE_RESOLUTION = 2.0 ** -FINE_BISECTIONS
 
 
 @njit(cache=True, inline="always")
@@ -39,18 +53,35 @@ def _bearing_path(e, th, hh, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def _bearing_kink(e, hh, model, state, work):
+def _off_line(e, model, state, work):
+    """Whether the plan bearing ``e``'s step leaves the line of its displacement increment: the
+    velocities at both ends or the committed hysteretic direction are not parallel to it (the
+    test of ``friction_pendulum._path_z``; a kind without a rate form: always)."""
+    ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+    dx, dy = work.u[ix] - state.u[ix], work.u[iy] - state.u[iy]
+    zx, zy = bearing_plan_rate_state(model.b_kind[e], state.b_S[e])
+    if not (np.isfinite(zx) and np.isfinite(zy)):
+        return True
+    cross = (abs(dx * state.v[iy] - dy * state.v[ix]) + abs(dx * work.v[iy] - dy * work.v[ix])
+             + abs(dx * zy - dy * zx))
+    return cross != 0.0
+
+
+@njit(cache=True, inline="always")
+def _bearing_kink(e, hh, model, state, work, fine):
     """Fraction θ just past the plan bearing ``e``'s change of branch (e.g. between sticking and
     sliding) inside the trial step (along the step's path, each point from the committed
-    state), 2 when it stays on one branch."""
+    state), 2 when it stays on one branch; ``fine``: off a line, to FINE_BISECTIONS."""
     kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
-    lo, hi = KINK_RESOLUTION, 1.0
+    bisections = FINE_BISECTIONS if fine and _off_line(e, model, state, work) else \
+        KINK_BISECTIONS
+    lo, hi = 2.0 ** -bisections, 1.0
     ux, uy = _bearing_path(e, lo, hh, model, state, work)
     branch0 = bearing_plan_branch(kind, p, s, ux, uy)
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
     if bearing_plan_branch(kind, p, s, work.u[ix], work.u[iy]) == branch0:
         return 2.0
-    for _ in range(KINK_BISECTIONS):
+    for _ in range(bisections):
         mid = 0.5 * (lo + hi)
         ux, uy = _bearing_path(e, mid, hh, model, state, work)
         if bearing_plan_branch(kind, p, s, ux, uy) == branch0:
@@ -61,10 +92,11 @@ def _bearing_kink(e, hh, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def _bearing_turn(e, hh, model, state, work):
+def _bearing_turn(e, hh, model, state, work, fine):
     """Fraction θ just past the point where the plan bearing ``e`` turns back (its velocity along
     its committed turning direction, e.g. a sliding bearing's friction direction, crosses zero:
-    it unloads), 2 when it does not turn inside the step or has no such direction."""
+    it unloads), 2 when it does not turn inside the step or has no such direction; ``fine``:
+    off a line, FINE_RESOLUTION past it."""
     zx, zy = bearing_plan_turn_direction(model.b_kind[e], state.b_S[e])
     if zx == 0.0 and zy == 0.0:
         return 2.0
@@ -75,13 +107,14 @@ def _bearing_turn(e, hh, model, state, work):
         return 2.0
     th = crossing(r0, zx * state.a[ix] + zy * state.a[iy], r1,
                   zx * work.a[ix] + zy * work.a[iy], hh)
-    if th <= KINK_RESOLUTION or th >= 1.0:
+    res = FINE_RESOLUTION if fine and _off_line(e, model, state, work) else KINK_RESOLUTION
+    if th <= res or th >= 1.0:
         return 2.0
-    return min(1.0, th + KINK_RESOLUTION)
+    return min(1.0, th + res)
 
 
 @njit(cache=True, inline="always")
-def find_kink(hh, model, state, work):
+def find_kink(hh, model, state, work, fine):
     """Fraction θ of the trial step just past the earliest element kink inside it (2: none).
 
     An element's tangent at the start (its committed branch) and at the trial end are compared;
@@ -115,14 +148,14 @@ def find_kink(hh, model, state, work):
         if hi < theta:
             theta = hi
     for e in range(model.b_dofs.shape[0]):
-        th = _bearing_kink(e, hh, model, state, work)
+        th = _bearing_kink(e, hh, model, state, work, fine)
         if th < theta:
             theta = th
     return theta
 
 
 @njit(cache=True, inline="always")
-def find_turn(hh, model, state, work):
+def find_turn(hh, model, state, work, fine):
     """Fraction θ of the trial step just past the earliest turning point of an element's
     deformation inside it where the element changes branch (2: none).
 
@@ -160,7 +193,7 @@ def find_turn(hh, model, state, work):
         if th < theta:
             theta = th
     for e in range(model.b_dofs.shape[0]):
-        th = _bearing_turn(e, hh, model, state, work)
+        th = _bearing_turn(e, hh, model, state, work, fine)
         if th < theta:
             theta = th
     return theta

@@ -14,7 +14,7 @@ from femoat.bearings import registry as bearing_registry
 from femoat.integration import codes, methods
 from femoat.integration.bundles import Model, Recorder, Settings, State, Work
 from femoat.integration.limits import pack_limits
-from femoat.integration.methods.dp5 import N_STAGES
+from femoat.integration.methods import N_STAGES
 from femoat.integration.recording import channels as registry
 from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
@@ -232,13 +232,8 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
 
     n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
     method = methods.module(integ.method)
-    if method.EXPLICIT and isinstance(packed, PackedPlanModel) and packed.bearing_dofs.size:
-        raise ValueError(
-            f"method = {integ.method!r} on a plan friction pendulum: its explicit stages read "
-            "the bearing's friction direction from a path guessed between stage values, and "
-            "on a curved orbit that is only first order in the step (measured: a 1 % error in "
-            "the peak base displacement at rtol 1e-8). Use Integrator(method='newmark'), the "
-            "default of a plan run.")
+    if isinstance(packed, PackedPlanModel) and packed.bearing_dofs.size:
+        _check_plan_method(integ.method, packed)
     return Settings(
         method=methods.CODES[integ.method], quintic_peaks=bool(method.QUINTIC_DENSE),
         beta=float(integ.beta), gamma=float(integ.gamma), alpha=float(integ.alpha),
@@ -254,6 +249,26 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
         record_every=int(integ.record_every), ring=not history,
         stop_at_limit=bool(stop_at_limit),
         limits=pack_limits(() if limits is None else tuple(limits), packed))
+
+
+def _check_plan_method(name, packed):
+    """Refuse an open-phase method that is first order on the plan bearings of ``packed``."""
+    rated = [bearing_registry.has_rate_form(bearing_registry.kinds()[k])
+             for k in np.unique(packed.bearing_kind)]
+    if name == "dp5":
+        raise ValueError(
+            "method = 'dp5' on plan bearings: its explicit stages read a bearing's friction "
+            "direction from a path guessed between stage values, which on a curved orbit is "
+            "only first order in the step (a 1 % error in the peak base displacement at rtol "
+            "1e-8). Use Integrator(method='ark5') (the fifth-order step that carries the "
+            "friction state, the default of a plan run) or method='newmark'.")
+    if name == "ark5" and not all(rated):
+        kinds = ", ".join(bearing_registry.kinds()[k] for k, r in
+                          zip(np.unique(packed.bearing_kind), rated) if not r)
+        raise ValueError(
+            f"method = 'ark5' on plan bearings without a rate form ({kinds}): their friction "
+            "state would follow a path guessed between stage values (first order in the step). "
+            "Use Integrator(method='newmark'), the default of a plan run on these bearings.")
 
 
 def _bundles(packed, ag, u, v, settings):
@@ -289,11 +304,12 @@ def _bundles(packed, ag, u, v, settings):
                 CT=np.zeros((n, n)), A=np.zeros((n, n)), b=np.zeros(n), ef=np.zeros(nel),
                 ed=np.zeros(nel), bf=np.zeros((nb, 2)), cf=np.zeros(ncon), cd=np.zeros(ncon),
                 cft=np.zeros(ncon), ag1=np.zeros(nk), ag_stage=np.zeros(nk),
-                k22=np.zeros((2, 2, 2)),
+                k22=np.zeros((3, 2, 2)),
                 kv=np.zeros((N_STAGES, n)), ka=np.zeros((N_STAGES, n)), eu=np.zeros(n),
                 ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
-                s_tmp=np.zeros(packed.el_S.shape[1]))
+                s_tmp=np.zeros(packed.el_S.shape[1]), b_rate=np.zeros(nb, dtype=np.int64),
+                bz=np.zeros((nb, 2)), kz=np.zeros((N_STAGES, nb, 2)))
     return model, state, work
 
 

@@ -16,12 +16,15 @@ import json
 import numpy as np
 
 from femoat.atomic import atomic_path
+from femoat.contact._dispatch import acts_at_zero
 from femoat.dense_peaks import (
     hermite_abs_max,
     linear_accel_velocity_abs_max,
     parabolic_peak,
     quintic_accel_abs_max,
+    smooth_intervals,
 )
+from femoat.integration.methods import QUINTIC_METHODS
 from femoat.integration.recording.channels import CHANNELS, UNITS
 from femoat.structure.roles import STORY, role_of
 from femoat.units import G
@@ -53,7 +56,8 @@ class RunResult:
             cols = [i for i in range(packed.n_struct, packed.n) if packed.c_B[c, i] != 0.0]
             wall_cols.append(dict(cols=cols, phi=[-packed.c_B[c, i] for i in cols],
                                   k=[packed.K[i, i] for i in cols],
-                                  c=[packed.C[i, i] for i in cols]))
+                                  c=[packed.C[i, i] for i in cols],
+                                  closes_smoothly=not acts_at_zero(int(packed.c_code[c]))))
         story_c = [float(-packed.C[e_i, e_j]) if e_j >= 0 else 0.0
                    for e_i, e_j in zip(packed.el_i, packed.el_j)]
         meta = dict(
@@ -194,11 +198,10 @@ class RunResult:
             return None
         ns = self.meta["n_struct"]
         info = self.meta.get("info", {})
-        if info.get("method") != "dp5" or self.velocity.shape[1] == 0:
+        if info.get("method") not in QUINTIC_METHODS or self.velocity.shape[1] == 0:
             return [float(x) for x in np.abs(acc).max(axis=0)]
-        open_now = ~self.contact_closed.astype(bool).any(axis=1) if self.contact_closed.size \
-            else np.ones(self.time.size, dtype=bool)
-        smooth = open_now[:-1] & open_now[1:]
+        smooth = smooth_intervals(self.contact_closed.reshape(self.time.size, -1),
+                                  [w.get("closes_smoothly", False) for w in self.meta["walls"]])
         return quintic_accel_abs_max(self.time, self.displacement[:, :ns],
                                      self.velocity[:, :ns], self.acceleration[:, :ns],
                                      self.ground_acceleration, smooth)

@@ -30,7 +30,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from femoat.atomic import atomic_path
-from femoat.dense_peaks import hermite_abs_max, quintic_accel_abs_max
+from femoat.contact._dispatch import acts_at_zero
+from femoat.dense_peaks import hermite_abs_max, quintic_accel_abs_max, smooth_intervals
+from femoat.integration.methods import QUINTIC_METHODS
 from femoat.integration.recording import peaks as running_layout
 from femoat.plan.building import AXES
 from femoat.plan.moat import SIDES, wall_side
@@ -173,7 +175,8 @@ class PlanRunResult:
         for c, cols in enumerate(lay.wall_dofs):
             walls.append(dict(cols=list(cols), phi=[float(-packed.c_B[c, i]) for i in cols],
                               k=[float(packed.K[i, i]) for i in cols],
-                              c=[float(packed.C[i, i]) for i in cols]))
+                              c=[float(packed.C[i, i]) for i in cols],
+                              closes_smoothly=not acts_at_zero(int(packed.c_code[c]))))
         meta = dict(
             meta,
             dof_names=list(lay.names),
@@ -356,17 +359,19 @@ class PlanRunResult:
 
     def _acceleration_peaks(self, axis):
         """Peak absolute accelerations along ``axis`` [in/s²] of the base mat and the floors:
-        inside the smooth steps of a ``dp5`` run (no wall in contact at either end) from the
+        inside the smooth steps of a fifth-order run (``dp5``, ``ark5``; the intervals of
+        :func:`~femoat.dense_peaks.smooth_intervals`) from the
         quintic interpolant of (u, v, a), else at the samples (as in 1D)."""
         acc = self.absolute_acceleration(axis)
-        if self.meta["info"].get("method") != "dp5" or self.velocity.shape[1] == 0:
+        if self.meta["info"].get("method") not in QUINTIC_METHODS or self.velocity.shape[1] == 0:
             return [float(x) for x in np.abs(acc).max(axis=0)]
-        open_now = ~self.contact_closed.astype(bool).any(axis=1)
         cols = self._cols(axis)
         return quintic_accel_abs_max(self.time, self.displacement[:, cols],
                                      self.velocity[:, cols], self.acceleration[:, cols],
                                      self.ground_acceleration[:, _axis(axis)],
-                                     open_now[:-1] & open_now[1:])
+                                     smooth_intervals(self.contact_closed, [
+                                         w.get("closes_smoothly", False)
+                                         for w in self.meta["walls"]]))
 
     def _continuous(self, running=None):
         """The peaks of the continuous solution: {"plan": the base mat's |u| [in], "base": its

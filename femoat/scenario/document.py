@@ -8,7 +8,7 @@ from pathlib import Path
 from femoat.integration.settings import Integrator
 from femoat.plan.model import PlanModel
 from femoat.plan.moat import SIDES
-from femoat.run import PLAN_METHOD
+from femoat.run import PLAN_METHOD, plan_method
 from femoat.scenario import building, moat, motion, pair, solver, walls
 from femoat.scenario.reading import check_keys, flag, read_toml, subtable, text
 from femoat.structure.pounding import PoundingModel
@@ -95,7 +95,7 @@ def defaults(plan=False):
     else:
         out.update(walls=walls.defaults(), motion=motion.defaults())
     solver_table = solver.defaults()
-    if plan:  # a plan run's own method (the explicit open phase is refused in plan)
+    if plan:  # a plan run's own method (the default isolator's: the friction pendulum's)
         solver_table["method"] = PLAN_METHOD
     return {**out, "solver": solver_table, "output": dict(OUTPUT_DEFAULTS)}
 
@@ -126,18 +126,17 @@ def model_from_dict(d, base_dir=Path(".")):
 
 def integrator_for(model, table):
     """The Integrator of a ``[solver]`` table for ``model``: a plan model's method defaults to
-    a plan run's own (:data:`femoat.run.PLAN_METHOD`), a 1D model's to the Integrator's."""
+    a plan run's own (:func:`femoat.run.plan_method`), a 1D model's to the Integrator's."""
     table = dict(table)
     if isinstance(model, PlanModel):
-        table.setdefault("method", PLAN_METHOD)
-        from femoat.integration import methods
-
-        if table["method"] in methods.CODES and methods.module(table["method"]).EXPLICIT:
+        default = plan_method(model)
+        table.setdefault("method", default)
+        if table["method"] == "dp5" or (table["method"] == "ark5" and default != "ark5"):
             raise ValueError(
-                f"[solver] method = {table['method']!r}: a plan run cannot use the explicit "
-                "open phase (on a curved orbit its stages read the friction direction only to "
-                f"first order, docs/plan.md §10); write method = \"{PLAN_METHOD}\" in "
-                "[solver] or leave method out (a plan file's default).")
+                f"[solver] method = {table['method']!r}: on this plan isolator its explicit "
+                "stages would read the friction direction from a path between stage values, "
+                f"only first order on a curved orbit (docs/coupled_friction.md); write method = "
+                f"\"{default}\" in [solver] or leave method out (this plan file's default).")
     return solver.solver_from_dict(table)
 
 def scenario_from_dict(d, base_dir=Path(".")):

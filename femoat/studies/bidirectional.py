@@ -72,7 +72,7 @@ _BUILDING = {  # the paper building, stated (femoat.scenario.defaults()'s, Build
 }
 _WALL = {"damping": "published", "gap": 4.0}  # [in] clearance to each wall
 _COMMON = {
-    "solver": {"method": "newmark"},
+    "solver": {"method": "ark5"},
     # the criteria are marked, the runs go on to the record's end (stop = false): every peak is
     # over the whole record in both suites, however early a criterion was reached
     "collapse": {"drift_ratio": 0.10, "isolator": True, "stop": False},

@@ -21,9 +21,9 @@ method.
 """
 
 from femoat.compilation.jit import njit
-from femoat.integration.methods import dp5, newmark
+from femoat.integration.methods import ark5, dp5, newmark
 
-MODULES = (newmark, dp5)
+MODULES = (newmark, dp5, ark5)
 """The methods, by code."""
 NAMES = tuple(m.NAME for m in MODULES)
 """The methods' names, by code (``Integrator(method=...)``)."""
@@ -36,6 +36,12 @@ EXPLICIT = tuple(m.EXPLICIT for m in MODULES)
 _SAFETY = tuple(float(m.SAFETY) for m in MODULES)
 _SHRINK_MIN = tuple(float(m.SHRINK_MIN) for m in MODULES)
 _ERROR_EXPONENT = tuple(float(m.ERROR_EXPONENT) for m in MODULES)
+FINE_LANDING = tuple(bool(getattr(m, "FINE_LANDING", False)) for m in MODULES)
+"""Per code: plan bearings' kinks and turns off a line landed to ``kinks.FINE_RESOLUTION``."""
+QUINTIC_METHODS = tuple(m.NAME for m in MODULES if m.QUINTIC_DENSE)
+"""The methods whose open phase has fifth-order dense output (the acceleration crests)."""
+N_STAGES = max(getattr(m, "N_STAGES", 0) for m in MODULES)
+"""Stage rows of the work bundle's ``kv``, ``ka``, ``kz``: the most any method takes."""
 
 
 def module(name):
@@ -46,6 +52,8 @@ def module(name):
 @njit(cache=True, inline="always")
 def step(code, hh, ag1, any_closed, model, state, settings, work):
     """The method ``code``'s trial step: (solved, scaled error)."""
+    if code == 2:
+        return ark5.step(hh, ag1, any_closed, model, state, settings, work)
     if code == 1:
         return dp5.step(hh, ag1, any_closed, model, state, settings, work)
     return newmark.step(hh, ag1, any_closed, model, state, settings, work)
@@ -54,6 +62,8 @@ def step(code, hh, ag1, any_closed, model, state, settings, work):
 @njit(cache=True, inline="always")
 def retry(code, t, hh, h, model, state, settings, work, rec):
     """The method ``code``'s step after one it could not solve: (h, failed)."""
+    if code == 2:
+        return ark5.retry(t, hh, h, model, state, settings, work, rec)
     if code == 1:
         return dp5.retry(t, hh, h, model, state, settings, work, rec)
     return newmark.retry(t, hh, h, model, state, settings, work, rec)
@@ -62,6 +72,8 @@ def retry(code, t, hh, h, model, state, settings, work, rec):
 @njit(cache=True, inline="always")
 def next_step(code, hh, err, h_min):
     """The method ``code``'s step after an accepted one."""
+    if code == 2:
+        return ark5.next_step(hh, err, h_min)
     if code == 1:
         return dp5.next_step(hh, err, h_min)
     return newmark.next_step(hh, err, h_min)

@@ -147,7 +147,7 @@ def wall_propagator(m, c, k, h, row, scratch):
 
 
 @njit(cache=True, inline="always")
-def _walls_exact(hh, ag0, ag1, nb, model, state, work):
+def walls_exact(hh, ag0, ag1, nb, model, state, work):
     """Advance the wall DOFs i ≥ nb exactly over the step (into ``work.u``, ``work.v``,
     ``work.a``, ``work.F``) and add their input and viscous energy to ``work.de``.
 
@@ -237,19 +237,20 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def _building_energy(hh, ag0, ag1, nb, model, work):
-    """Input and viscous energy of the building over the step by the fifth-order quadrature of
-    the stages' powers (into ``work.de``). (Element work is the driver's trapezoidal rule: exact
-    on a branch linear in the deformation, and a step never changes branch.)"""
+def stage_energy(B, CS, hh, ag0, ag1, nb, model, work):
+    """Input and viscous energy of the building over the step by the quadrature of weights ``B``
+    (stage times ``CS``) of the stages' powers (into ``work.de``). (Element work is the driver's
+    trapezoidal rule: exact on a branch linear in the deformation, and a step never changes
+    branch.)"""
     C, r = model.C, model.r
     kv = work.kv
-    for s in range(N_STAGES - 1):
-        b = DP_A[N_STAGES - 1, s]
+    for s in range(B.size):
+        b = B[s]
         if b == 0.0:
             continue
         ag = work.ag_stage
         for k in range(ag.size):
-            ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
+            ag[k] = ag0[k] + CS[s] * (ag1[k] - ag0[k])
         p_in = 0.0
         p_visc = 0.0
         for i in range(nb):
@@ -262,18 +263,24 @@ def _building_energy(hh, ag0, ag1, nb, model, work):
         work.de[E_VISCOUS] += hh * b * p_visc
 
 
+DP_B = DP_A[N_STAGES - 1, :N_STAGES - 1].copy()
+"""The fifth-order weights of the stages before the last (whose weight is zero)."""
+
+
 @njit(cache=True, inline="always")
-def _error(hh, nb, model, settings, work):
-    """The scaled error of the embedded fourth-order solution (1 = at the tolerance)."""
+def displacement_error(E, hh, nb, settings, work):
+    """The embedded solution's displacement and velocity errors e_u = h·Σ E_s·kv_s,
+    e_v = h·Σ E_s·ka_s (into ``work.eu``, ``work.ev``) and the largest scaled displacement
+    error (each DOF in its own coordinate: a floor against the floor below)."""
     rtol = settings.rtol
-    scale, err_ref, s_acc = settings.scale_open, settings.err_ref, settings.scale_accel
+    scale, err_ref = settings.scale_open, settings.err_ref
     kv, ka, eu, ev = work.kv, work.ka, work.eu, work.ev
     for i in range(nb):
         su = 0.0
         sv = 0.0
-        for k in range(N_STAGES):
-            su += DP_E[k] * kv[k, i]
-            sv += DP_E[k] * ka[k, i]
+        for k in range(E.size):
+            su += E[k] * kv[k, i]
+            sv += E[k] * ka[k, i]
         eu[i] = hh * su
         ev[i] = hh * sv
     err = 0.0
@@ -285,13 +292,25 @@ def _error(hh, nb, model, settings, work):
         q = abs(d) / (rtol * scale[i])
         if q > err:
             err = q
-    # the acceleration error M⁻¹·(K_T·e_u + C_T·e_v) (the force error first, into work.b)
-    Minv, KT, CT, df = model.Minv, work.KT, work.CT, work.b
+    return err
+
+
+@njit(cache=True, inline="always")
+def force_error(nb, work):
+    """The force error K_T·e_u + C_T·e_v into ``work.b``."""
+    KT, CT, eu, ev, df = work.KT, work.CT, work.eu, work.ev, work.b
     for j in range(nb):
         fj = 0.0
         for m in range(nb):
             fj += KT[j, m] * eu[m] + CT[j, m] * ev[m]
         df[j] = fj
+
+
+@njit(cache=True, inline="always")
+def acceleration_error(err, nb, model, settings, work):
+    """max(``err``, the largest scaled acceleration error M⁻¹·``work.b``)."""
+    rtol, s_acc = settings.rtol, settings.scale_accel
+    Minv, df = model.Minv, work.b
     for i in range(nb):
         if not np.isfinite(s_acc[i]):
             continue
@@ -302,6 +321,15 @@ def _error(hh, nb, model, settings, work):
         if q > err:
             err = q
     return err
+
+
+@njit(cache=True, inline="always")
+def _error(hh, nb, model, settings, work):
+    """The scaled error of the embedded fourth-order solution (1 = at the tolerance): each
+    DOF's displacement error and its acceleration error M⁻¹·(K_T·e_u + C_T·e_v)."""
+    err = displacement_error(DP_E, hh, nb, settings, work)
+    force_error(nb, work)
+    return acceleration_error(err, nb, model, settings, work)
 
 
 @njit(cache=True, inline="always")
@@ -316,9 +344,17 @@ def explicit_step(hh, ag1, model, state, settings, work):
     work.de[E_VISCOUS] = 0.0
     if not _stages(hh, ag0, ag1, nb, model, state, work):
         return np.inf
-    _walls_exact(hh, ag0, ag1, nb, model, state, work)
-    _building_energy(hh, ag0, ag1, nb, model, work)
-    # the contacts' indentations at the end (every gap open: no force)
+    walls_exact(hh, ag0, ag1, nb, model, state, work)
+    stage_energy(DP_B, DP_C, hh, ag0, ag1, nb, model, work)
+    if not open_end(model, work):
+        return np.inf
+    return _error(hh, nb, model, settings, work)
+
+
+@njit(cache=True, inline="always")
+def open_end(model, work):
+    """The contacts' indentations at the step's end (every gap open: no force); False when the
+    end state is not finite."""
     c_B, c_gap = model.c_B, model.c_gap
     for c in range(c_gap.size):
         d = -c_gap[c]
@@ -328,8 +364,8 @@ def explicit_step(hh, ag1, model, state, settings, work):
         work.cf[c] = 0.0
     for i in range(work.u.size):
         if not (np.isfinite(work.u[i]) and np.isfinite(work.v[i])):
-            return np.inf
-    return _error(hh, nb, model, settings, work)
+            return False
+    return True
 
 
 # ---- the method's interface (femoat.integration.methods) ------------------------------------

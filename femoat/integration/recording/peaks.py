@@ -8,7 +8,9 @@ recorded history (so a run's peaks need no Python pass over its history), sample
 * the base mat's velocity: the crest of v with the acceleration linear in an interval;
 * the absolute accelerations of the base mat and the floors: the samples, and with the
   fifth-order open phase the crest of the quintic Hermite interpolant of (u, v, a) on an
-  interval whose two samples have every gap open;
+  interval integrated by it: every gap open at its start, and at its end too or closing there
+  under a law whose force vanishes at δ = 0⁺ (the step before a located closure; a dashpot law's
+  force jumps on at closure, so its end sample holds the acceleration after the jump);
 * the largest indentation, at the samples.
 
 An interval is judged once the sample after it is recorded: an event at a committed state may
@@ -29,6 +31,7 @@ last two samples (t, u, v, a, a_g per ground component); ``state.pk_n[0]`` how m
 import numpy as np
 
 from femoat.compilation.jit import njit
+from femoat.contact._dispatch import acts_at_zero
 from femoat.integration.recording.rows import row
 from femoat.integration.codes import S_NOUT
 
@@ -244,6 +247,17 @@ def _open(closed_row):
 
 
 @njit(cache=True, inline="always")
+def _closes_smoothly(closed_row, c_code):
+    """No contact is closed at this sample whose law acts at δ = 0⁺ (a dashpot, whose force
+    jumps on at closure): an open interval ending here, on a located closure, has a smooth
+    acceleration up to its end, and its end sample's acceleration is that end's."""
+    for c in range(closed_row.size):
+        if closed_row[c] and acts_at_zero(c_code[c]):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
 def _keep(t, model, state, settings):
     """The committed state at time ``t`` as the ring's newest sample, and its own values."""
     ring = state.pk_ring
@@ -270,7 +284,7 @@ def _judge_older(k, model, state, settings, rec):
     ring = state.pk_ring
     rows = rec.closed.shape[0]
     open0 = True if k - 2 < 0 else _open(rec.closed[row(k - 2, rows)])
-    open1 = True if k - 1 < 0 else _open(rec.closed[row(k - 1, rows)])
+    open1 = True if k - 1 < 0 else _closes_smoothly(rec.closed[row(k - 1, rows)], model.c_code)
     _interval(open0 and open1, settings.quintic_peaks, model.M.shape[0], settings.n_struct,
               model.c_gap.size, settings.err_ref, model.dof_axis, model.c_B, model.base_xy, ring,
               state.pk)

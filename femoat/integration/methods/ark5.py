@@ -1,0 +1,393 @@
+"""The open phase's step for coupled friction: the additive Runge-Kutta pair ARK5(4)8L[2]SA of
+Kennedy & Carpenter (Appl. Numer. Math. 44, 2003; SUNDIALS ARKODE's ``ARK548L2SA``, SciML's
+``KenCarp5``), the structure explicit, each sliding plan bearing's friction state implicit.
+
+Why a pair: a plan bearing's friction direction z turns with the sliding direction. Read from a
+path guessed between a step's start and a stage value (what :mod:`~femoat.integration.methods.dp5`
+would do, and why it refuses plan bearings), z carries a first-order error into every stage:
+Runge-Kutta stage values are first-order approximations only. Here z is a state of the step
+while the bearing slides, with the bearing kind's rate form (:data:`femoat.bearings.registry.
+RATE_KERNELS`; the single friction pendulum's ż = (v − (z·v)·z)/u_y). That rate is stiff (its
+eigenvalues −(z·v)/u_y and −2(z·v)/u_y: h·|v|/u_y is 5-35 at the steps the structure takes),
+so it is the implicit part: each stage solves, per bearing, the 2×2 system
+
+    Z_s = z_n + h·Σ_{j<s} a^I_sj·g_j + h·γ·g(Z_s, V_s)
+
+by Newton's method from the previous stage's Z (γ = 41/200; the structure's stage (U_s, V_s) is
+explicit, from a^E, so the structure never enters a nonlinear solve), and the stage's forces use
+(U_s, V_s, Z_s). The pair is stiffly accurate (the implicit weights are its last row): the step's
+z is the last stage's Z. docs/coupled_friction.md measured the pair's order on the bearing alone
+(4.8 on an ellipse with reversals, 3.8 on a figure-eight, 4.6-4.7 on imposed orbits; KenCarp4
+and KenCarp47 lower, an explicit step on z unstable at these steps) and compares it with the
+other formulations read in ARKODE, OrdinaryDiffEq and diffrax.
+
+A bearing that sticks (its z the radial return from the committed state, an algebraic function of
+the displacement) follows the step's path as in the other methods; the switches between
+sticking and sliding are landed on (the kink search for stick to slip, the turn search for slip
+to stick), so a step never carries a bearing across one.
+
+**Along a line** the rate vanishes identically (z = ±d, v ∥ d: g = 0 exactly), and a step is the
+fifth-order step of :mod:`~femoat.integration.methods.dp5` on (u, v, z) with z constant: this
+method then takes exactly that step (a step whose carried states have a zero rate at the start,
+in velocity and acceleration, is tried as a dp5 step and kept if the rate is zero at every one
+of its stages). A plan run along one axis is therefore the 1D default run, and a model without
+a sliding plan bearing (every 1D model) is stepped by dp5 bit for bit.
+
+Everything else is dp5's: the walls advanced exactly, the energy by the pair's quadrature, the
+error as the embedded fourth-order solution's displacement and acceleration errors, the latter
+with the friction state's error as a force (f(z) − f(z − e_z) of each carried bearing).
+
+Units: kip, in, s.
+"""
+
+from fractions import Fraction
+
+import numpy as np
+
+from femoat.bearings.dispatch import (
+    bearing_plan_rate,
+    bearing_plan_rate_active,
+    bearing_plan_rate_force,
+    bearing_plan_rate_state,
+)
+from femoat.compilation.jit import njit
+from femoat.integration.codes import E_INPUT, E_VISCOUS, S_REJECT_ERR
+from femoat.integration.forces import _internal_force, ground_load, trial_outputs
+from femoat.integration.methods import dp5
+
+# ---- the ARK5(4)8L[2]SA tableau (Kennedy & Carpenter 2003, Table 6 of their report) -----------
+
+
+def _rows(rows, s):
+    A = np.zeros((s, s))
+    for i, row in rows.items():
+        for j, x in row.items():
+            A[i, j] = float(Fraction(x))
+    return A
+
+
+N_STAGES = 8
+_GAMMA = "41/200"
+ARK_AE = _rows({
+    1: {0: "41/100"},
+    2: {0: "367902744464/2072280473677", 1: "677623207551/8224143866563"},
+    3: {0: "1268023523408/10340822734521", 2: "1029933939417/13636558850479"},
+    4: {0: "14463281900351/6315353703477", 2: "66114435211212/5879490589093",
+        3: "-54053170152839/4284798021562"},
+    5: {0: "14090043504691/34967701212078", 2: "15191511035443/11219624916014",
+        3: "-18461159152457/12425892160975", 4: "-281667163811/9011619295870"},
+    6: {0: "19230459214898/13134317526959", 2: "21275331358303/2942455364971",
+        3: "-38145345988419/4862620318723", 4: "-1/8", 5: "-1/8"},
+    7: {0: "-19977161125411/11928030595625", 2: "-40795976796054/6384907823539",
+        3: "177454434618887/12078138498510", 4: "782672205425/8267701900261",
+        5: "-69563011059811/9646580694205", 6: "7356628210526/4942186776405"}}, N_STAGES)
+"""The explicit part's coefficients a^E_sj (j < s): the structure's stages."""
+ARK_B = np.array([float(Fraction(x)) for x in (
+    "-872700587467/9133579230613", "0", "0", "22348218063261/9555858737531",
+    "-1143369518992/8141816002931", "-39379526789629/19018526304540",
+    "32727382324388/42900044865799", _GAMMA)])
+"""The fifth-order weights, shared by both parts (the implicit part's last row)."""
+ARK_BHAT = np.array([float(Fraction(x)) for x in (
+    "-975461918565/9796059967033", "0", "0", "78070527104295/32432590147079",
+    "-548382580838/3424219808633", "-33438840321285/15594753105479",
+    "3629800801594/4656183773603", "4035322873751/18575991585200")])
+"""The embedded fourth-order weights, shared by both parts."""
+ARK_E = ARK_B - ARK_BHAT
+"""b − b̂: the error estimate's weights."""
+ARK_C = np.array([float(Fraction(x)) for x in (
+    "0", "41/100", "2935347310677/11292855782101", "1426016391358/7196633302097", "92/100",
+    "24/100", "3/5", "1")])
+"""The stage times c_s (shared)."""
+ARK_AI = _rows({
+    1: {0: _GAMMA, 1: _GAMMA},
+    2: {0: "41/400", 1: "-567603406766/11931857230679", 2: _GAMMA},
+    3: {0: "683785636431/9252920307686", 2: "-110385047103/1367015193373", 3: _GAMMA},
+    4: {0: "3016520224154/10081342136671", 2: "30586259806659/12414158314087",
+        3: "-22760509404356/11113319521817", 4: _GAMMA},
+    5: {0: "218866479029/1489978393911", 2: "638256894668/5436446318841",
+        3: "-1179710474555/5321154724896", 4: "-60928119172/8023461067671", 5: _GAMMA},
+    6: {0: "1020004230633/5715676835656", 2: "25762820946817/25263940353407",
+        3: "-2161375909145/9755907335909", 4: "-211217309593/5846859502534",
+        5: "-4269925059573/7827059040749", 6: _GAMMA}}, N_STAGES)
+ARK_AI[N_STAGES - 1] = ARK_B
+"""The implicit part's coefficients a^I_sj (j ≤ s; an explicit first stage, γ = 41/200 on the
+diagonal, stiffly accurate)."""
+
+NAME = "ark5"
+"""The method's name (``Integrator(method=...)``)."""
+EXPLICIT = True
+"""The structure's stages are evaluated from the committed state (as dp5's): the driver lands
+on turning points, looks inside a step for a gap that closes and reopens, keeps a cruising step."""
+QUINTIC_DENSE = True
+"""Its dense output is fifth order (the running peaks read acceleration crests inside a step)."""
+FINE_LANDING = True
+"""A plan bearing's stick-slip switch off a line is landed on to 2^-24 of the step, not 2^-12
+(``femoat.integration.kinks.FINE_BISECTIONS``): the sliver past it, which the landing step
+integrates along its stage paths, would otherwise cap the order at two for small steps."""
+DEFAULT_RTOL = 1e-5
+"""dp5's: every peak within 1e-3 of a converged run (``benchmarks/plan_speed.py`` measures it)."""
+ERROR_EXPONENT = dp5.ERROR_EXPONENT
+SAFETY = dp5.SAFETY
+SHRINK_MIN = dp5.SHRINK_MIN
+GROW_MAX = dp5.GROW_MAX
+
+NEWTON_TOL = 1e-14
+"""A stage's friction state is solved when Newton's last correction is at most this [-]."""
+NEWTON_ACCEPT = 1e-11
+"""... or, after MAX_NEWTON iterations, at most this (round-off in a very stiff stage); else the
+step fails and is retried shorter."""
+MAX_NEWTON = 20
+
+
+# ---- the carried friction states ------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _flag_carried(model, state, work):
+    """Flag the plan bearings whose friction state this step carries (``work.b_rate``: they slide
+    and keep loading), their committed state into ``work.bz``. Returns (any flagged, every
+    flagged rate zero at the start: at the committed velocity and, as a rate at the committed
+    acceleration, its first derivative for a rate linear in v)."""
+    flagged = False
+    still = True
+    v, a = state.v, state.a
+    for e in range(model.b_dofs.shape[0]):
+        kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        if not bearing_plan_rate_active(kind, p, s, v[ix], v[iy]):
+            continue
+        work.b_rate[e] = 1
+        flagged = True
+        zx, zy = bearing_plan_rate_state(kind, s)
+        work.bz[e, 0] = zx
+        work.bz[e, 1] = zy
+        g = bearing_plan_rate(kind, p, zx, zy, v[ix], v[iy])
+        ga = bearing_plan_rate(kind, p, zx, zy, a[ix], a[iy])
+        if g[0] != 0.0 or g[1] != 0.0 or ga[0] != 0.0 or ga[1] != 0.0:
+            still = False
+    return flagged, still
+
+
+@njit(cache=True, inline="always")
+def _rates_vanish(n_stages, model, work):
+    """Whether every carried state's rate at its (constant) value is exactly zero at each of
+    the ``n_stages`` stage velocities in ``work.kv``: the step never moved it."""
+    for e in range(model.b_dofs.shape[0]):
+        if work.b_rate[e] == 0:
+            continue
+        kind, p = model.b_kind[e], model.b_P[e]
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        for s in range(n_stages):
+            g = bearing_plan_rate(kind, p, work.bz[e, 0], work.bz[e, 1], work.kv[s, ix],
+                                  work.kv[s, iy])
+            if g[0] != 0.0 or g[1] != 0.0:
+                return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _stage_rates(s, model, work):
+    """g_s = g(Z_s, V_s) of each carried state into ``work.kz[s]``."""
+    for e in range(model.b_dofs.shape[0]):
+        if work.b_rate[e] == 0:
+            continue
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        g = bearing_plan_rate(model.b_kind[e], model.b_P[e], work.bz[e, 0], work.bz[e, 1],
+                              work.v[ix], work.v[iy])
+        work.kz[s, e, 0] = g[0]
+        work.kz[s, e, 1] = g[1]
+
+
+@njit(cache=True, inline="always")
+def _solve_stage_states(s, hh, model, state, work):
+    """Each carried state at stage ``s``: Z = w + h·γ·g(Z, V_s), w = z_n + h·Σ_{j<s} a^I_sj·g_j,
+    by Newton's method from the previous stage's Z (into ``work.bz``). False when one does not
+    converge (the step is then retried shorter)."""
+    hg = hh * ARK_AI[s, s]
+    for e in range(model.b_dofs.shape[0]):
+        if work.b_rate[e] == 0:
+            continue
+        kind, p = model.b_kind[e], model.b_P[e]
+        z0x, z0y = bearing_plan_rate_state(kind, state.b_S[e])
+        wx = 0.0
+        wy = 0.0
+        for j in range(s):
+            wx += ARK_AI[s, j] * work.kz[j, e, 0]
+            wy += ARK_AI[s, j] * work.kz[j, e, 1]
+        wx = z0x + hh * wx
+        wy = z0y + hh * wy
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        vx, vy = work.v[ix], work.v[iy]
+        zx, zy = work.bz[e, 0], work.bz[e, 1]
+        step = np.inf
+        for _ in range(MAX_NEWTON):
+            gx, gy, j00, j01, j10, j11 = bearing_plan_rate(kind, p, zx, zy, vx, vy)
+            rx = zx - wx - hg * gx
+            ry = zy - wy - hg * gy
+            a00, a01, a10, a11 = 1.0 - hg * j00, -hg * j01, -hg * j10, 1.0 - hg * j11
+            det = a00 * a11 - a01 * a10
+            if not (np.isfinite(det) and det != 0.0):
+                return False
+            dx = (a11 * rx - a01 * ry) / det
+            dy = (a00 * ry - a10 * rx) / det
+            zx -= dx
+            zy -= dy
+            step = abs(dx) + abs(dy)
+            if step <= NEWTON_TOL:
+                break
+        if not step <= NEWTON_ACCEPT:
+            return False
+        work.bz[e, 0] = zx
+        work.bz[e, 1] = zy
+    return True
+
+
+@njit(cache=True, inline="always")
+def _friction_force_error(hh, model, state, work):
+    """Add each carried state's error e_z = h·Σ (b − b̂)_s·g_s, as the force f(z) − f(z − e_z)
+    at the step's end, to the force error ``work.b`` (after :func:`dp5.force_error`)."""
+    f2, kb, cb = work.k22[2, 0], work.k22[0], work.k22[1]
+    for e in range(model.b_dofs.shape[0]):
+        if work.b_rate[e] == 0:
+            continue
+        ezx = 0.0
+        ezy = 0.0
+        for s in range(N_STAGES):
+            ezx += ARK_E[s] * work.kz[s, e, 0]
+            ezy += ARK_E[s] * work.kz[s, e, 1]
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        bearing_plan_rate_force(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix],
+                                work.u[iy], work.v[ix], work.v[iy], work.bz[e, 0] - hh * ezx,
+                                work.bz[e, 1] - hh * ezy, f2, kb, cb)
+        work.b[ix] += work.bf[e, 0] - f2[0]
+        work.b[iy] += work.bf[e, 1] - f2[1]
+
+
+# ---- the step --------------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _stage(s, hh, ag0, ag1, nb, model, state, work):
+    """The explicit stage ``s`` (U_s, V_s from a^E), the carried states at it, its forces and
+    accelerations (``work.kv[s]``, ``work.ka[s]``) and rates (``work.kz[s]``). False when it is
+    not finite or a state's solve fails."""
+    Minv, r = model.Minv, model.r
+    kv, ka = work.kv, work.ka
+    u0, v0 = state.u, state.v
+    for i in range(nb):
+        su = 0.0
+        sv = 0.0
+        for j in range(s):
+            aij = ARK_AE[s, j]
+            su += aij * kv[j, i]
+            sv += aij * ka[j, i]
+        work.u[i] = u0[i] + hh * su
+        work.v[i] = v0[i] + hh * sv
+    if not _solve_stage_states(s, hh, model, state, work):
+        return False
+    _internal_force(work.u, work.v, model, state, work, trial_outputs(work), False, nb, u0, v0,
+                    ARK_C[s] * hh)
+    ag = work.ag_stage
+    for k in range(ag.size):
+        ag[k] = ag0[k] + ARK_C[s] * (ag1[k] - ag0[k])
+    for i in range(nb):
+        acc = 0.0
+        for j in range(nb):
+            acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
+        if not np.isfinite(acc):
+            return False
+        ka[s, i] = acc
+        kv[s, i] = work.v[i]
+    _stage_rates(s, model, work)
+    return True
+
+
+@njit(cache=True, inline="always")
+def coupled_step(hh, ag1, model, state, settings, work):
+    """The ARK5(4) trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its
+    end) with the flagged bearings' friction states carried (``work.b_rate``, their committed
+    values in ``work.bz``): ``work`` then holds the end state, forces, indentations, the energy
+    increments and the carried states' end values (``work.bz``). Returns the scaled error (inf:
+    a stage was not finite or a state's solve failed)."""
+    nb = settings.n_explicit
+    ag0 = state.ag_now
+    Minv, r = model.Minv, model.r
+    kv, ka = work.kv, work.ka
+    u0, v0 = state.u, state.v
+    n = u0.size
+    work.de[E_INPUT] = 0.0
+    work.de[E_VISCOUS] = 0.0
+    for i in range(nb):
+        kv[0, i] = v0[i]
+        ka[0, i] = state.a[i]
+        work.v[i] = v0[i]
+    for i in range(nb, n):
+        work.u[i] = u0[i]
+        work.v[i] = v0[i]
+    _stage_rates(0, model, work)
+    for s in range(1, N_STAGES):
+        if not _stage(s, hh, ag0, ag1, nb, model, state, work):
+            return np.inf
+    # the solution (the carried states' is the last stage's: stiffly accurate)
+    for i in range(nb):
+        su = 0.0
+        sv = 0.0
+        for j in range(N_STAGES):
+            su += ARK_B[j] * kv[j, i]
+            sv += ARK_B[j] * ka[j, i]
+        work.u[i] = u0[i] + hh * su
+        work.v[i] = v0[i] + hh * sv
+    _internal_force(work.u, work.v, model, state, work, trial_outputs(work), True, nb, u0, v0,
+                    hh)
+    for i in range(nb):
+        acc = 0.0
+        for j in range(nb):
+            acc += Minv[i, j] * (ground_load(r, j, ag1) - work.F[j])
+        work.a[i] = acc
+    dp5.walls_exact(hh, ag0, ag1, nb, model, state, work)
+    dp5.stage_energy(ARK_B, ARK_C, hh, ag0, ag1, nb, model, work)
+    if not dp5.open_end(model, work):
+        return np.inf
+    for i in range(nb):
+        if not np.isfinite(work.a[i]):
+            return np.inf
+    err = dp5.displacement_error(ARK_E, hh, nb, settings, work)
+    dp5.force_error(nb, work)
+    _friction_force_error(hh, model, state, work)
+    return dp5.acceleration_error(err, nb, model, settings, work)
+
+
+# ---- the method's interface (femoat.integration.methods) ------------------------------------
+
+
+@njit(cache=True, inline="always")
+def step(hh, ag1, any_closed, model, state, settings, work):
+    """(the step has a finite state, its scaled error), only ever called while every gap is
+    open: dp5's step where no bearing's friction state moves (no sliding plan bearing, or every
+    one sliding along a line), else :func:`coupled_step`."""
+    flagged, still = _flag_carried(model, state, work)
+    if flagged and still:
+        err = dp5.explicit_step(hh, ag1, model, state, settings, work)
+        if np.isfinite(err) and _rates_vanish(dp5.N_STAGES, model, work):
+            return True, err
+    elif not flagged:
+        err = dp5.explicit_step(hh, ag1, model, state, settings, work)
+        return np.isfinite(err), err
+    err = coupled_step(hh, ag1, model, state, settings, work)
+    return np.isfinite(err), err
+
+
+@njit(cache=True, inline="always")
+def retry(t, hh, h, model, state, settings, work, rec):
+    """After a step with no finite state: (the smaller step to try, False), or (``h``, True)
+    when the step is already the smallest."""
+    if hh <= settings.h_min:
+        return h, True
+    state.stats[S_REJECT_ERR] += 1
+    return max(hh * SHRINK_MIN, settings.h_min), False
+
+
+@njit(cache=True, inline="always")
+def next_step(hh, err, h_min):
+    """The step after an accepted one of length ``hh`` and scaled error ``err``."""
+    return max(hh * dp5.step_factor(err), h_min)

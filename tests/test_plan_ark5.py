@@ -1,0 +1,118 @@
+"""The plan open phase's coupled-friction step (femoat.integration.methods.ark5): its order on the
+bearing alone, its tableau, and what it refuses.
+
+The bearing alone: a bare base mat (no floors) of weight W = 33 kip on the default plan friction
+pendulum (W = 33 kip, R = 30 in, μ = 0.06, u_y = 0.01 in), walls out of reach, under three
+smooth ground orbits sampled every 10 ms (steps land on the samples: the record is linear inside
+each step, so every step size integrates the same problem). Fixed steps: max_step = h with an
+rtol that never rejects. The reference is the same run at a step 2^4-2^7 times smaller, itself
+converged to 6e-11 in (ref at dt/256 against dt/512, measured). The error is the largest of the
+end displacement [in] and velocity [in/s] components.
+
+Why the orders asserted differ by range (docs/coupled_friction.md): while sliding, z's rate has
+the eigenvalues −(z·v)/u_y, −2(z·v)/u_y; with h·|v|/u_y above ~1 the pair's stage order 2
+limits it (the circle at 18.8 in/s: 3.1-3.4 from 10 to 1.25 ms, measured), below it the pair
+reaches its order (circle 4.0, 4.5 at 0.31, 0.16 ms). The ellipse and the figure-eight slide
+slower on average: 4.3-4.9 and 4.3-4.7 from 2.5 ms down (measured).
+"""
+
+import numpy as np
+import pytest
+
+from femoat.bearings import registry
+from femoat.ground_motions import GroundMotion, RecordPair
+from femoat.integration import Integrator
+from femoat.integration.methods import ark5
+from femoat.plan import PlanBuilding, PlanModel, rectangular_moat
+from femoat.run import plan_method, run
+
+DT = 0.01  # [s] the orbits' sample interval
+NEVER = 0.099  # the largest rtol: with it no step is rejected, steps are max_step
+
+
+def _bearing_alone():
+    b = PlanBuilding(base_weight=33.0, floor_weights=(), stories_x=(), stories_y=())
+    return PlanModel(b, rectangular_moat("concrete", "H", gap=60.0))
+
+
+def _orbit(kind, seconds=3.0):
+    """Ground acceleration [g] of each orbit, from rest."""
+    t = np.arange(0.0, seconds + DT / 2, DT)
+    if kind == "ellipse":  # T = 1.2 s, 0.2 g by 0.005 g: reversals, 12 stick/slip segments
+        w = 2 * np.pi / 1.2
+        ax, ay = 0.2 * np.cos(w * t), 0.005 * np.sin(w * t)
+    elif kind == "eight":  # T = 2 s: sticks, then slides on a figure-eight
+        w = 2 * np.pi / 2.0
+        ax, ay = 0.08 * np.sin(w * t), 0.2 * np.sin(2 * w * t)
+    else:  # circle, T = 1 s, 0.15 g: sticks, then slides on a circle without turning back
+        w = 2 * np.pi
+        ax, ay = 0.15 * np.cos(w * t), 0.15 * np.sin(w * t)
+    return RecordPair(GroundMotion(ax, DT, name="x"), GroundMotion(ay, DT, name="y"))
+
+
+def _errors(kind, divisions, reference):
+    model, pair = _bearing_alone(), _orbit(kind)
+
+    def end(h):
+        r = run(model, pair, Integrator(method="ark5", rtol=NEVER, max_step=h), duration=3.0)
+        return np.concatenate([r.base_displacement[-1], r.base_velocity[-1]])
+
+    ref = end(DT / reference)
+    return [np.abs(end(DT / k) - ref).max() for k in divisions]
+
+
+def _slope(divisions, errors):
+    """The least-squares order p of error ∝ h^p, h = DT/division."""
+    return np.polyfit(np.log2(divisions), -np.log2(errors), 1)[0]
+
+
+@pytest.mark.parametrize("kind, divisions, reference, least", [
+    ("ellipse", (2, 4, 8, 16), 256, 3.8),   # measured 4.6 (3.7, 4.3, 4.7, 4.9 per halving)
+    ("eight", (4, 8, 16), 256, 3.8),        # measured 4.5 (3.6, 4.3, 4.7)
+    ("circle", (16, 32, 64), 1024, 3.8),    # measured 4.3 (4.0, 4.5): h·|v|/u_y 1.2 to 0.3
+    ("circle", (1, 2, 4, 8), 1024, 3.0),    # measured 3.2 (3.3, 3.1, 3.3): the stiff range
+])
+def test_the_coupled_friction_step_converges_at_its_order_on_the_bearing_alone(
+        kind, divisions, reference, least):
+    errors = _errors(kind, divisions, reference)
+    assert max(errors) < 1e-4  # the orbits are resolved (a slip of inches)
+    assert _slope(divisions, errors) >= least, errors
+
+
+def test_the_tableau_is_the_kennedy_carpenter_pair():
+    # Order conditions a tableau error would break (each exact in rationals, here to round-off):
+    # shared weights b summing to 1, c = A·1 for both parts, the explicit part's fifth-order
+    # quadrature conditions Σ b c^k = 1/(k+1) (k ≤ 4), the embedded weights' fourth order, the
+    # implicit part stiffly accurate (its last row is b) with γ = 41/200 on the diagonal.
+    AE, AI, b, bh, c = ark5.ARK_AE, ark5.ARK_AI, ark5.ARK_B, ark5.ARK_BHAT, ark5.ARK_C
+    assert b.sum() == pytest.approx(1.0, abs=1e-15)
+    np.testing.assert_allclose(AE.sum(axis=1), c, atol=1e-15)
+    np.testing.assert_allclose(AI.sum(axis=1), c, atol=1e-15)
+    for k in range(5):
+        assert b @ c ** k == pytest.approx(1.0 / (k + 1), abs=1e-14)
+    for k in range(4):
+        assert bh @ c ** k == pytest.approx(1.0 / (k + 1), abs=1e-14)
+    assert bh @ c ** 4 != pytest.approx(0.2, abs=1e-6)  # the embedded pair is one order lower
+    np.testing.assert_array_equal(AI[-1], b)
+    assert np.all(np.diag(AI)[1:] == 41.0 / 200.0) and AI[0, 0] == 0.0
+    assert np.all(np.triu(AE) == 0.0)
+    # the second- and third-order coupling conditions Σ b_i a_ij c_j = 1/6 for A_E and A_I
+    for A in (AE, AI):
+        assert b @ A @ c == pytest.approx(1.0 / 6.0, abs=1e-14)
+        assert b @ (c * (A @ c)) == pytest.approx(1.0 / 8.0, abs=1e-14)
+        assert b @ A @ (c * c) == pytest.approx(1.0 / 12.0, abs=1e-14)
+    assert b @ AE @ AI @ c == pytest.approx(1.0 / 24.0, abs=1e-14)  # a coupled fourth-order tree
+
+
+def test_a_plan_run_defaults_to_ark5_where_the_bearing_has_a_rate_form():
+    from femoat.bearings.lead_rubber import LeadRubberBearing
+    from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+
+    assert registry.has_rate_form("femoat.bearings.friction_pendulum")
+    assert plan_method(PlanModel()) == "ark5"
+    for iso in (TripleFrictionPendulum(), LeadRubberBearing()):
+        model = PlanModel(PlanBuilding(isolator=iso))
+        assert plan_method(model) == "newmark"
+        pair = _orbit("ellipse", seconds=0.5)
+        with pytest.raises(ValueError, match="without a rate form"):
+            run(model, pair, Integrator(method="ark5"), duration=0.5)
