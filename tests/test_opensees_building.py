@@ -8,7 +8,6 @@ estimate of OpenSees' own discretisation error at its step, derived next to the 
 import argparse
 import json
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -22,7 +21,7 @@ from femoat.paper import paper_model, paper_motion
 from femoat.run import run
 from femoat.structure.building import Building
 from femoat.structure.materials import Elastic, FrictionPendulum, IMKBilinear
-from femoat.structure.pounding import MoatWall, PoundingModel
+from femoat.structure.pounding import PoundingModel
 from femoat.walls import wall_preset
 
 # the suite's one OpenSees probe (conftest): its reason names the packages and the apt-get command

@@ -55,7 +55,7 @@ def test_pairs_of_two_lengths_name_the_files_pad_key(tmp_path, capsys):
 
 def test_an_explicit_method_in_a_plan_file_names_the_solver_key(tmp_path, capsys):
     args = _scenario(tmp_path, '[solver]\nmethod = "dp5"\n')
-    _refused(capsys, args, "[solver] method = 'dp5'", 'method = "newmark" in [solver]',
+    _refused(capsys, args, "[solver] method = 'dp5'", 'method = "ark5" in [solver]',
              absent=("Integrator(",))
 
 

@@ -253,10 +253,13 @@ def test_a_pair_with_its_b_component_zeroed_is_the_1d_run_of_a(study):
     p = result.peaks
     # with no y ground motion nothing pushes the building along y: the y DOFs stay at rest,
     # the friction acts along x alone, the +-y walls are never reached, and the plan run is
-    # the 1D run of a along x (the plan solver's own claim, bit for bit, for Newmark, which
-    # both suites use); the 1D suite's row must be that run
+    # the 1D run of a along x (the plan solver's own claim, bit for bit: the study's ark5 is
+    # dp5 along a line); the 1D suite's row must be that run. The plan peak is the crest of
+    # |u| between samples, the 1D one the crest of u: the same interpolant, other roundings
+    # (measured 1 ulp)
     assert row["pounding"]  # the check covers impacts: record 1a at the MCE pounds (4.5 in)
-    assert p["peak_plan_base_displacement"] == row["peak_base_displacement"]
+    assert p["peak_plan_base_displacement"] == pytest.approx(row["peak_base_displacement"],
+                                                             rel=1e-14)
     assert p["peak_impact_force_px"] == row["peak_impact_force_pos"]
     assert p["peak_impact_force_mx"] == row["peak_impact_force_neg"]
     assert p["impacts_py"] == p["impacts_my"] == 0

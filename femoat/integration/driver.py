@@ -53,6 +53,7 @@ from femoat.integration.forces import ground_accel
 from femoat.integration.kinks import find_kink, find_turn
 from femoat.integration.limits import CRITERION_EXCEEDED, RUNAWAY_EXCEEDED, check_limits
 from femoat.integration.recording.recorder import record
+from femoat.integration.recording.rows import row
 
 
 @njit(cache=True, inline="always")
@@ -61,6 +62,38 @@ def _limit_reached(t, model, state, settings):
     the run end here?"""
     hit = check_limits(t, settings.n_struct, model, state, settings.limits, state.first_exceed)
     return hit == RUNAWAY_EXCEEDED or (hit == CRITERION_EXCEEDED and settings.stop_at_limit)
+
+
+@njit(cache=True, inline="always")
+def _record_ends(state):
+    """Whether the ground acceleration jumps to zero here (at the record's last sample, not
+    zero: ``forces.ground_accel`` is zero after the record)."""
+    for k in range(state.ag_now.size):
+        if state.ag_now[k] != 0.0:
+            return True
+    return False
+
+
+@njit(cache=True, inline="always")
+def _recorded_at(t, state, rec):
+    """Whether the last recorded sample is at time ``t``."""
+    k = state.stats[S_NOUT]
+    return k > 0 and rec.t[row(k - 1, rec.t.shape[0])] == t
+
+
+@njit(cache=True, inline="always")
+def _after_the_record(t, model, state, work, settings, rec):
+    """At the record's last sample (time ``t``, recorded with the ground's left limit): the
+    ground acceleration drops to zero, so the accelerations restart from it and the state is
+    recorded again at ``t`` with these right limits (a second sample at one instant, as at an
+    event). Without it the next step would ramp the ground from its last value to zero: a
+    velocity error of a_g·h/2, which an explicit step's error estimate does not see (the
+    ramp is linear inside the step) and which a fifth-order step's long steps make large. A
+    Newmark open phase keeps the ramp (its runs stay bit for bit; its steps are short)."""
+    for k in range(state.ag_now.size):
+        state.ag_now[k] = 0.0
+    restart(model, state, work)
+    record(t, model, state, settings, rec)
 
 
 @njit(cache=True)
@@ -80,12 +113,23 @@ def run_chunk(t_stop, model, state, settings, work, rec):
     shortened = state.shortened[0] == 1
     landing = state.landing[0]  # the contact whose located separation the shortened step lands on
     since_record = state.since_record[0]
+    explicit_open = methods.EXPLICIT[open_method]
+    t_record = (model.ag.shape[0] - 1) * settings.dt_record  # the record's last sample
     while t < t_goal * (1.0 - 1e-15) and t_goal - t > 1e-14:
         stalls += 1
         if stalls > 100000:  # no step accepted after 100000 attempts: report, don't spin
             return _stop(STEP_TOO_SMALL, t, h, h_cruise, shortened, landing, since_record, state)
         if (stats[S_NOUT] >= rec.t.size and not ring) or stats[S_IMPACTS] > impacts_room:
             return _stop(BUFFER_FULL, t, h, h_cruise, shortened, landing, since_record, state)
+        if explicit_open and t == t_record and t < t_end and _record_ends(state):
+            # the record's end: its sample (left limits) if a decimated record skipped it,
+            # then the restart and its sample (right limits), each after the room check above
+            if _recorded_at(t, state, rec):
+                _after_the_record(t, model, state, work, settings, rec)
+            else:
+                record(t, model, state, settings, rec)
+            since_record = 0
+            continue
         h_asked = h
         hh, t1 = _step_end(t, h, t_end, shortened, settings, model.ag.shape[0])
         ag1 = work.ag1

@@ -114,9 +114,14 @@ class PlanHistory:
     @classmethod
     def from_result(cls, result, title=""):
         """The history of a plan run's :class:`~femoat.results.plan.PlanRunResult` (femoat's plan
-        solver or :meth:`~femoat.results.plan.PlanRunResult.from_opensees`)."""
-        return cls(time=result.time, base=result.base_displacement,
-                   wall_force=result.contact_force, gaps=result.meta["gaps"],
+        solver or :meth:`~femoat.results.plan.PlanRunResult.from_opensees`). Of two samples at
+        one instant (an event, the record's end: the left and the right limit) the later is
+        kept."""
+        t = np.asarray(result.time, dtype=float)
+        keep = np.ones(t.size, dtype=bool)
+        keep[:-1] = t[1:] != t[:-1]
+        return cls(time=t[keep], base=np.asarray(result.base_displacement)[keep],
+                   wall_force=np.asarray(result.contact_force)[keep], gaps=result.meta["gaps"],
                    sides=tuple(result.sides), title=title)
 
     @property
