@@ -4,11 +4,14 @@ plan run with and without history (``history=False``, what a suite does): the lo
 whole ``run()`` call (wall clock, best of N: with history it also reads the peaks from it).
 
     python benchmarks/plan_speed.py [--repeat 5] [--pairs 1 5 12] [--seconds 12] [--factor 2]
+                                    [--mce [--angles 0 30]]
 
 Each FEMA P695 far-field pair (its first seconds, both components times ``factor``) drives the
 paper building in plan in the paper's concrete moat (Hertzdamp, 4 in gaps on all four sides):
-the plan run (Newmark, the default of a plan run) against the 1D model along x under the x
-component (its default dp5, and Newmark: the same method as the plan run).
+the plan run (ark5, the default of a plan run on a friction pendulum; and Newmark, the plan
+default before it) against the 1D model along x under the x component (its default dp5, and
+Newmark). The worst peak errors are against the plan run converged (Newmark, rtol 1e-8).
+``--mce``: the full pairs at the MCE, time x 0.5, at 0 and 30 degrees (issue 26's targets).
 """
 
 import argparse
@@ -45,38 +48,62 @@ def _best(model, motion, integ, duration, repeat, history=True):
     return min(r.peaks["cpu_seconds"] for r in runs), min(walls), runs[0]
 
 
+def _pairs(args):
+    """(label, RecordPair): the first ``seconds`` of each pair times ``factor``, or with
+    ``--mce`` the full pairs at the paper building's MCE (FEMA P695 normalized, the
+    bidirectional study's anchoring SF at T = 3.5 s), time x 0.5, at each angle."""
+    if not args.mce:
+        for k in args.pairs:
+            p = fema_p695_pair("farfield", k)
+            yield f"{k}", RecordPair(first(p.x, args.seconds, args.factor),
+                                     first(p.y, args.seconds, args.factor))
+        return
+    from femoat.studies.bidirectional import full_anchor
+
+    sf = full_anchor()
+    for k in args.pairs:
+        for angle in args.angles:
+            p = fema_p695_pair("farfield", k, scale=sf, normalized=True)
+            pair = RecordPair(p.x.time_scaled(0.5), p.y.time_scaled(0.5)).rotated(angle)
+            yield f"{k}@{angle:g}", pair
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--pairs", type=int, nargs="+", default=[1, 5, 12])
     ap.add_argument("--seconds", type=float, default=12.0)
     ap.add_argument("--factor", type=float, default=2.0)
+    ap.add_argument("--mce", action="store_true",
+                    help="full pairs at the MCE, time x 0.5, at --angles (issue 26's targets)")
+    ap.add_argument("--angles", type=float, nargs="+", default=[0.0, 30.0])
     args = ap.parse_args(argv)
     model = PlanModel(walls=rectangular_moat("concrete", "H", gap=4.0))
     along = model.along("x")
-    print(f"{'pair':>4s} {'plan ms':>8s} {'steps':>7s} {'1D dp5 ms':>10s} {'steps':>7s} "
+    newmark = Integrator(method="newmark")
+    print(f"{'pair':>7s} {'plan ms':>8s} {'steps':>7s} {'1D dp5 ms':>10s} {'steps':>7s} "
           f"{'1D nm ms':>9s} {'steps':>7s} {'plan/1D dp5':>11s} {'plan/1D nm':>10s} "
           f"{'impacts':>8s} {'worst peak err':>15s} {'no-hist ms':>10s} {'run() ms':>9s} "
-          f"{'no-hist run() ms':>16s}")
-    for k in args.pairs:
-        p = fema_p695_pair("farfield", k)
-        pair = RecordPair(first(p.x, args.seconds, args.factor),
-                          first(p.y, args.seconds, args.factor))
+          f"{'no-hist run() ms':>16s} {'plan nm ms':>10s} {'nm err':>9s}")
+    for label, pair in _pairs(args):
         duration = pair.duration + 1.0
         run(model, pair, duration=duration)  # compile / load
         t_plan, w_plan, r_plan = _best(model, pair, None, duration, args.repeat)
         t_bare, w_bare, r_bare = _best(model, pair, None, duration, args.repeat, history=False)
-        t_dp5, _, r_dp5 = _best(along, pair.x, Integrator(), duration, args.repeat)
-        t_nm, _, r_nm = _best(along, pair.x, Integrator(method="newmark"), duration, args.repeat)
+        t_pnm, _, r_pnm = _best(model, pair, newmark, duration, args.repeat)
+        t_dp5, _, r_dp5 = _best(along, pair.motion_x, Integrator(), duration, args.repeat)
+        t_nm, _, r_nm = _best(along, pair.motion_x, newmark, duration, args.repeat)
         assert r_bare.peaks["steps"] == r_plan.peaks["steps"]  # the same steps, recorded or not
         ref = run(model, pair, Integrator(method="newmark", rtol=1e-8), duration=duration)
-        got, want = _peaks(r_plan.peaks), _peaks(ref.peaks)
-        err = (np.abs(got - want) / np.maximum(np.abs(want), 1e-12)).max()  # (0 against 0: 0)
+        want = _peaks(ref.peaks)
+        err, err_nm = ((np.abs(_peaks(r.peaks) - want) / np.maximum(np.abs(want), 1e-12)).max()
+                       for r in (r_plan, r_pnm))  # (0 against 0: 0)
         hits = sum(r_plan.peaks[f"impacts_{s}"] for s in ("px", "mx", "py", "my"))
-        print(f"{k:4d} {t_plan * 1e3:8.1f} {r_plan.peaks['steps']:7d} {t_dp5 * 1e3:10.1f} "
+        print(f"{label:>7s} {t_plan * 1e3:8.1f} {r_plan.peaks['steps']:7d} {t_dp5 * 1e3:10.1f} "
               f"{r_dp5.peaks['steps']:7d} {t_nm * 1e3:9.1f} {r_nm.peaks['steps']:7d} "
               f"{t_plan / t_dp5:11.2f} {t_plan / t_nm:10.2f} {hits:8d} {err:15.2e} "
-              f"{t_bare * 1e3:10.1f} {w_plan * 1e3:9.1f} {w_bare * 1e3:16.1f}")
+              f"{t_bare * 1e3:10.1f} {w_plan * 1e3:9.1f} {w_bare * 1e3:16.1f} "
+              f"{t_pnm * 1e3:10.1f} {err_nm:9.2e}", flush=True)
 
 
 if __name__ == "__main__":

@@ -52,7 +52,7 @@ from femoat.integration.events import (
 from femoat.integration.forces import ground_accel
 from femoat.integration.kinks import find_kink, find_turn
 from femoat.integration.limits import CRITERION_EXCEEDED, RUNAWAY_EXCEEDED, check_limits
-from femoat.integration.recording.recorder import record
+from femoat.integration.recording.recorder import record, record_sample
 from femoat.integration.recording.rows import row
 
 
@@ -81,6 +81,19 @@ def _recorded_at(t, state, rec):
     return k > 0 and rec.t[row(k - 1, rec.t.shape[0])] == t
 
 
+@njit(cache=True)
+def _record_end(t, model, state, work, settings, rec):
+    """At the record's last sample (time ``t``), where the ground acceleration drops to zero:
+    record that sample if a decimated record skipped it (the left limits), else restart from
+    the drop and record the right limits (:func:`_after_the_record`). One sample per call (the
+    loop checks the room before each). Its own compiled function: the recorder is inlined here
+    once, not again into the loop."""
+    if _recorded_at(t, state, rec):
+        _after_the_record(t, model, state, work, settings, rec)
+    else:
+        record_sample(t, model, state, settings, rec)
+
+
 @njit(cache=True, inline="always")
 def _after_the_record(t, model, state, work, settings, rec):
     """At the record's last sample (time ``t``, recorded with the ground's left limit): the
@@ -93,7 +106,7 @@ def _after_the_record(t, model, state, work, settings, rec):
     for k in range(state.ag_now.size):
         state.ag_now[k] = 0.0
     restart(model, state, work)
-    record(t, model, state, settings, rec)
+    record_sample(t, model, state, settings, rec)
 
 
 @njit(cache=True)
@@ -124,10 +137,7 @@ def run_chunk(t_stop, model, state, settings, work, rec):
         if explicit_open and t == t_record and t < t_end and _record_ends(state):
             # the record's end: its sample (left limits) if a decimated record skipped it,
             # then the restart and its sample (right limits), each after the room check above
-            if _recorded_at(t, state, rec):
-                _after_the_record(t, model, state, work, settings, rec)
-            else:
-                record(t, model, state, settings, rec)
+            _record_end(t, model, state, work, settings, rec)
             since_record = 0
             continue
         h_asked = h

@@ -267,48 +267,34 @@ def _friction_force_error(hh, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def _stage(s, hh, ag0, ag1, nb, model, state, work):
-    """The explicit stage ``s`` (U_s, V_s from a^E), the carried states at it, its forces and
-    accelerations (``work.kv[s]``, ``work.ka[s]``) and rates (``work.kz[s]``). False when it is
-    not finite or a state's solve fails."""
-    Minv, r = model.Minv, model.r
+def _combine(s, hh, nb, state, work):
+    """The structure's (U, V) of stage ``s`` from a^E (``s`` = N_STAGES: the solution, from b)
+    into ``work.u``, ``work.v``."""
     kv, ka = work.kv, work.ka
     u0, v0 = state.u, state.v
+    last = s == N_STAGES
     for i in range(nb):
         su = 0.0
         sv = 0.0
         for j in range(s):
-            aij = ARK_AE[s, j]
+            aij = ARK_B[j] if last else ARK_AE[s, j]
             su += aij * kv[j, i]
             sv += aij * ka[j, i]
         work.u[i] = u0[i] + hh * su
         work.v[i] = v0[i] + hh * sv
-    if not _solve_stage_states(s, hh, model, state, work):
-        return False
-    _internal_force(work.u, work.v, model, state, work, trial_outputs(work), False, nb, u0, v0,
-                    ARK_C[s] * hh)
-    ag = work.ag_stage
-    for k in range(ag.size):
-        ag[k] = ag0[k] + ARK_C[s] * (ag1[k] - ag0[k])
-    for i in range(nb):
-        acc = 0.0
-        for j in range(nb):
-            acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
-        if not np.isfinite(acc):
-            return False
-        ka[s, i] = acc
-        kv[s, i] = work.v[i]
-    _stage_rates(s, model, work)
-    return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def coupled_step(hh, ag1, model, state, settings, work):
     """The ARK5(4) trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its
     end) with the flagged bearings' friction states carried (``work.b_rate``, their committed
     values in ``work.bz``): ``work`` then holds the end state, forces, indentations, the energy
     increments and the carried states' end values (``work.bz``). Returns the scaled error (inf:
-    a stage was not finite or a state's solve failed)."""
+    a stage was not finite or a state's solve failed).
+
+    Stages 1-7 and the solution share one force evaluation in the loop below (pass
+    ``N_STAGES`` is the solution: (u, v) from the weights b, z the last stage's, stiffly
+    accurate; its tangents for the error estimate): one compiled copy of the force routine."""
     nb = settings.n_explicit
     ag0 = state.ag_now
     Minv, r = model.Minv, model.r
@@ -325,32 +311,34 @@ def coupled_step(hh, ag1, model, state, settings, work):
         work.u[i] = u0[i]
         work.v[i] = v0[i]
     _stage_rates(0, model, work)
-    for s in range(1, N_STAGES):
-        if not _stage(s, hh, ag0, ag1, nb, model, state, work):
+    ag = work.ag_stage
+    for s in range(1, N_STAGES + 1):
+        last = s == N_STAGES
+        _combine(s, hh, nb, state, work)
+        if not last and not _solve_stage_states(s, hh, model, state, work):
             return np.inf
-    # the solution (the carried states' is the last stage's: stiffly accurate)
-    for i in range(nb):
-        su = 0.0
-        sv = 0.0
-        for j in range(N_STAGES):
-            su += ARK_B[j] * kv[j, i]
-            sv += ARK_B[j] * ka[j, i]
-        work.u[i] = u0[i] + hh * su
-        work.v[i] = v0[i] + hh * sv
-    _internal_force(work.u, work.v, model, state, work, trial_outputs(work), True, nb, u0, v0,
-                    hh)
-    for i in range(nb):
-        acc = 0.0
-        for j in range(nb):
-            acc += Minv[i, j] * (ground_load(r, j, ag1) - work.F[j])
-        work.a[i] = acc
+        c = 1.0 if last else ARK_C[s]
+        _internal_force(work.u, work.v, model, state, work, trial_outputs(work), last, nb, u0,
+                        v0, c * hh)
+        for k in range(ag.size):
+            ag[k] = ag1[k] if last else ag0[k] + c * (ag1[k] - ag0[k])
+        for i in range(nb):
+            acc = 0.0
+            for j in range(nb):
+                acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
+            if not np.isfinite(acc):
+                return np.inf
+            if last:
+                work.a[i] = acc
+            else:
+                ka[s, i] = acc
+                kv[s, i] = work.v[i]
+        if not last:
+            _stage_rates(s, model, work)
     dp5.walls_exact(hh, ag0, ag1, nb, model, state, work)
     dp5.stage_energy(ARK_B, ARK_C, hh, ag0, ag1, nb, model, work)
     if not dp5.open_end(model, work):
         return np.inf
-    for i in range(nb):
-        if not np.isfinite(work.a[i]):
-            return np.inf
     err = dp5.displacement_error(ARK_E, hh, nb, settings, work)
     dp5.force_error(nb, work)
     _friction_force_error(hh, model, state, work)
@@ -364,15 +352,13 @@ def coupled_step(hh, ag1, model, state, settings, work):
 def step(hh, ag1, any_closed, model, state, settings, work):
     """(the step has a finite state, its scaled error), only ever called while every gap is
     open: dp5's step where no bearing's friction state moves (no sliding plan bearing, or every
-    one sliding along a line), else :func:`coupled_step`."""
+    one sliding along a line), else :func:`coupled_step`. (Both are calls, not inlined: the
+    compiled loop holds each method's step once.)"""
     flagged, still = _flag_carried(model, state, work)
-    if flagged and still:
-        err = dp5.explicit_step(hh, ag1, model, state, settings, work)
-        if np.isfinite(err) and _rates_vanish(dp5.N_STAGES, model, work):
-            return True, err
-    elif not flagged:
-        err = dp5.explicit_step(hh, ag1, model, state, settings, work)
-        return np.isfinite(err), err
+    if not flagged or still:
+        err = dp5.explicit_step_call(hh, ag1, model, state, settings, work)
+        if not flagged or (np.isfinite(err) and _rates_vanish(dp5.N_STAGES, model, work)):
+            return np.isfinite(err), err
     err = coupled_step(hh, ag1, model, state, settings, work)
     return np.isfinite(err), err
 

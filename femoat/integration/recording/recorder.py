@@ -36,7 +36,14 @@ def sample_before_event(t, model, state, settings, rec):
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
     k = state.stats[S_NOUT]
     if t > 0.0 and (k == 0 or rec.t[row(k - 1, rec.t.shape[0])] != t):
-        record(t, model, state, settings, rec)
+        record_sample(t, model, state, settings, rec)
+
+
+@njit(cache=True)
+def record_sample(t, model, state, settings, rec):
+    """:func:`record` as a compiled function of its own: the loop and the events call one
+    copy (inlined, each of its call sites compiled the recorder and the running peaks again)."""
+    record(t, model, state, settings, rec)
 
 
 @njit(cache=True, inline="always")
