@@ -51,12 +51,16 @@ def module(name):
 
 @njit(cache=True, inline="always")
 def step(code, hh, ag1, any_closed, model, state, settings, work):
-    """The method ``code``'s trial step: (solved, scaled error)."""
-    if code == 2:
-        return ark5.step(hh, ag1, any_closed, model, state, settings, work)
-    if code == 1:
-        return dp5.step(hh, ag1, any_closed, model, state, settings, work)
-    return newmark.step(hh, ag1, any_closed, model, state, settings, work)
+    """The method ``code``'s trial step: (solved, scaled error). ark5 takes dp5's step where no
+    friction state moves (``ark5.plan``), through the one inlined copy of dp5's step here."""
+    if code == 0:
+        return newmark.step(hh, ag1, any_closed, model, state, settings, work)
+    how = ark5.plan(model, state, work) if code == 2 else ark5.DP5_STEP
+    if how != ark5.COUPLED:
+        solved, err = dp5.step(hh, ag1, any_closed, model, state, settings, work)
+        if code == 1 or how == ark5.DP5_STEP or (solved and ark5.rates_vanish(model, work)):
+            return solved, err
+    return ark5.step(hh, ag1, any_closed, model, state, settings, work)
 
 
 @njit(cache=True, inline="always")

@@ -348,17 +348,40 @@ def coupled_step(hh, ag1, model, state, settings, work):
 # ---- the method's interface (femoat.integration.methods) ------------------------------------
 
 
+DP5_STEP = 0
+""":func:`plan` answer: no carried state (no sliding plan bearing): the step is dp5's."""
+DP5_IF_STILL = 1
+"""Every carried state has a zero rate at the start: try dp5's step, keep it if
+:func:`rates_vanish` after it, else take :func:`coupled_step`."""
+COUPLED = 2
+"""The step is :func:`coupled_step`."""
+
+
+@njit(cache=True)
+def plan(model, state, work):
+    """Which step to take (:data:`DP5_STEP`, :data:`DP5_IF_STILL`, :data:`COUPLED`), the carried
+    bearings flagged (:func:`_flag_carried`). The method's ``step`` is spread over
+    ``femoat.integration.methods.step`` so that the loop holds one copy of dp5's step: it
+    asks this, takes dp5's step where told, and this method's :func:`coupled_step` else."""
+    flagged, still = _flag_carried(model, state, work)
+    if not flagged:
+        return DP5_STEP
+    return DP5_IF_STILL if still else COUPLED
+
+
+@njit(cache=True)
+def rates_vanish(model, work):
+    """After dp5's step with the carried states held: their rate was zero at every stage (the
+    step is then this method's step too)."""
+    return _rates_vanish(dp5.N_STAGES, model, work)
+
+
 @njit(cache=True, inline="always")
 def step(hh, ag1, any_closed, model, state, settings, work):
-    """(the step has a finite state, its scaled error), only ever called while every gap is
-    open: dp5's step where no bearing's friction state moves (no sliding plan bearing, or every
-    one sliding along a line), else :func:`coupled_step`. (Both are calls, not inlined: the
-    compiled loop holds each method's step once.)"""
-    flagged, still = _flag_carried(model, state, work)
-    if not flagged or still:
-        err = dp5.explicit_step_call(hh, ag1, model, state, settings, work)
-        if not flagged or (np.isfinite(err) and _rates_vanish(dp5.N_STAGES, model, work)):
-            return np.isfinite(err), err
+    """(the step has a finite state, its scaled error): :func:`coupled_step`, only ever called
+    while every gap is open. Where no friction state moves (:func:`plan`) the loop's
+    dispatcher, ``femoat.integration.methods.step``, takes dp5's step instead (its one copy of
+    it), and this step where dp5's did not keep the states still (:func:`rates_vanish`)."""
     err = coupled_step(hh, ag1, model, state, settings, work)
     return np.isfinite(err), err
 

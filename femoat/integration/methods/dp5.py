@@ -371,15 +371,6 @@ def open_end(model, work):
 # ---- the method's interface (femoat.integration.methods) ------------------------------------
 
 
-@njit(cache=True)
-def explicit_step_call(hh, ag1, model, state, settings, work):
-    """:func:`explicit_step` as a compiled function of its own, for the coupled-friction method
-    (:mod:`~femoat.integration.methods.ark5`): inlined there too, the loop would compile dp5's
-    stages twice (the loop's own dp5 step stays inlined: a call passing the bundles costs a 1D
-    run about as much as its steps)."""
-    return explicit_step(hh, ag1, model, state, settings, work)
-
-
 @njit(cache=True, inline="always")
 def step(hh, ag1, any_closed, model, state, settings, work):
     """(the step has a finite state, its scaled error): :func:`explicit_step` (only ever called
