@@ -51,7 +51,7 @@ from femoat.bearings.dispatch import (
     bearing_plan_rate_state,
 )
 from femoat.compilation.jit import njit
-from femoat.integration.codes import E_INPUT, E_VISCOUS, S_REJECT_ERR
+from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.forces import _internal_force, ground_load, trial_outputs
 from femoat.integration.methods import dp5
 
@@ -386,17 +386,7 @@ def step(hh, ag1, any_closed, model, state, settings, work):
     return np.isfinite(err), err
 
 
-@njit(cache=True, inline="always")
-def retry(t, hh, h, model, state, settings, work, rec):
-    """After a step with no finite state: (the smaller step to try, False), or (``h``, True)
-    when the step is already the smallest."""
-    if hh <= settings.h_min:
-        return h, True
-    state.stats[S_REJECT_ERR] += 1
-    return max(hh * SHRINK_MIN, settings.h_min), False
-
-
-@njit(cache=True, inline="always")
-def next_step(hh, err, h_min):
-    """The step after an accepted one of length ``hh`` and scaled error ``err``."""
-    return max(hh * dp5.step_factor(err), h_min)
+retry = dp5.retry
+"""After a step with no finite state: dp5's rule (the same controller constants)."""
+next_step = dp5.next_step
+"""The step after an accepted one: dp5's rule (h ∝ err^(−1/5))."""
