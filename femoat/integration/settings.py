@@ -30,9 +30,14 @@ class Integrator:
         "dp5" (default): while every gap is open, the building by the explicit Dormand-Prince
         5(4) pair and the walls exactly (:mod:`femoat.integration.methods.dp5`); while a contact
         is closed, Newmark/HHT-α as in "newmark". "newmark": implicit Newmark/HHT-α throughout
-        (second order; the method of femoat before it had "dp5"). Both locate contact events
-        and land on element kinks the same way; "dp5" also lands on the turning points of
-        yielding elements (every stage of its step is evaluated from the committed state).
+        (second order; the method of femoat before it had "dp5"). "ark5": "dp5" where no plan
+        bearing's friction state moves (every 1D model: bit for bit), else the additive pair
+        ARK5(4)8L[2]SA with each sliding plan bearing's friction state carried implicitly
+        (:mod:`femoat.integration.methods.ark5`; the default of a plan run on a friction
+        pendulum, :func:`femoat.run.plan_method`; "dp5" is refused on plan bearings). All
+        locate contact events and land on element kinks the same way; "dp5" and "ark5" also
+        land on the turning points of yielding elements (every stage of their step is
+        evaluated from the committed state).
     alpha : float
         HHT-α parameter in [−1/3, 0]; 0 is Newmark's average acceleration (no numerical
         damping). β = (1−α)²/4 and γ = (1−2α)/2.
