@@ -322,10 +322,15 @@ def coupled_step(hh, ag1, model, state, settings, work):
                         v0, c * hh)
         for k in range(ag.size):
             ag[k] = ag1[k] if last else ag0[k] + c * (ag1[k] - ag0[k])
+        q = work.b  # (free until the error estimate)
+        for j in range(nb):
+            q[j] = ground_load(r, j, ag) - work.F[j]
         for i in range(nb):
             acc = 0.0
             for j in range(nb):
-                acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
+                m = Minv[i, j]
+                if m != 0.0:  # (x and y apart: a plan model's M⁻¹ is mostly zeros)
+                    acc += m * q[j]
             if not np.isfinite(acc):
                 return np.inf
             if last:

@@ -223,10 +223,15 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
         ag = work.ag_stage
         for k in range(ag.size):
             ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
+        q = work.b  # the stage's load p − F (free until the error estimate)
+        for j in range(nb):
+            q[j] = ground_load(r, j, ag) - work.F[j]
         for i in range(nb):
             acc = 0.0
             for j in range(nb):
-                acc += Minv[i, j] * (ground_load(r, j, ag) - work.F[j])
+                m = Minv[i, j]
+                if m != 0.0:  # (a term m·q with m = 0 adds ±0: skipped, the same bits)
+                    acc += m * q[j]
             if not np.isfinite(acc):
                 return False
             ka[s, i] = acc
