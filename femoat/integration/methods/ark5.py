@@ -52,7 +52,7 @@ from femoat.bearings.dispatch import (
 )
 from femoat.compilation.jit import njit
 from femoat.integration.codes import E_INPUT, E_VISCOUS
-from femoat.integration.forces import _internal_force, ground_load, trial_outputs
+from femoat.integration.forces import _internal_force, trial_outputs
 from femoat.integration.methods import dp5
 
 # ---- the ARK5(4)8L[2]SA tableau (Kennedy & Carpenter 2003, Table 6 of their report) -----------
@@ -322,15 +322,9 @@ def coupled_step(hh, ag1, model, state, settings, work):
                         v0, c * hh)
         for k in range(ag.size):
             ag[k] = ag1[k] if last else ag0[k] + c * (ag1[k] - ag0[k])
-        q = work.b  # (free until the error estimate)
-        for j in range(nb):
-            q[j] = ground_load(r, j, ag) - work.F[j]
+        dp5.stage_load(r, ag, nb, work)
         for i in range(nb):
-            acc = 0.0
-            for j in range(nb):
-                m = Minv[i, j]
-                if m != 0.0:  # (x and y apart: a plan model's M⁻¹ is mostly zeros)
-                    acc += m * q[j]
+            acc = dp5.accel_row(i, nb, Minv, work.b)
             if not np.isfinite(acc):
                 return np.inf
             if last:

@@ -194,6 +194,26 @@ def walls_exact(hh, ag0, ag1, nb, model, state, work):
 
 
 @njit(cache=True, inline="always")
+def stage_load(r, ag, nb, work):
+    """A stage's load p − F of the building DOFs (ground ``ag`` [in/s²], forces ``work.F``) into
+    ``work.b`` (free until the error estimate)."""
+    for j in range(nb):
+        work.b[j] = ground_load(r, j, ag) - work.F[j]
+
+
+@njit(cache=True, inline="always")
+def accel_row(i, nb, Minv, q):
+    """(M⁻¹·q)_i [in/s²]; a term with M⁻¹_ij = 0 (x and y apart in plan) adds ±0 and is skipped
+    (the same bits)."""
+    acc = 0.0
+    for j in range(nb):
+        m = Minv[i, j]
+        if m != 0.0:
+            acc += m * q[j]
+    return acc
+
+
+@njit(cache=True, inline="always")
 def _stages(hh, ag0, ag1, nb, model, state, work):
     """The seven stages (``work.kv``, ``work.ka``); after it
     ``work.u``, ``work.v`` (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F``
@@ -223,15 +243,9 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
         ag = work.ag_stage
         for k in range(ag.size):
             ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
-        q = work.b  # the stage's load p − F (free until the error estimate)
-        for j in range(nb):
-            q[j] = ground_load(r, j, ag) - work.F[j]
+        stage_load(r, ag, nb, work)
         for i in range(nb):
-            acc = 0.0
-            for j in range(nb):
-                m = Minv[i, j]
-                if m != 0.0:  # (a term m·q with m = 0 adds ±0: skipped, the same bits)
-                    acc += m * q[j]
+            acc = accel_row(i, nb, Minv, work.b)
             if not np.isfinite(acc):
                 return False
             ka[s, i] = acc
