@@ -64,7 +64,8 @@ def _pairs(args):
     for k in args.pairs:
         for angle in args.angles:
             p = fema_p695_pair("farfield", k, scale=sf, normalized=True)
-            pair = RecordPair(p.x.time_scaled(0.5), p.y.time_scaled(0.5)).rotated(angle)
+            pair = RecordPair(p.x.time_scaled(0.5), p.y.time_scaled(0.5),
+                              scale=p.scale).rotated(angle)  # (keep NF x SF)
             yield f"{k}@{angle:g}", pair
 
 

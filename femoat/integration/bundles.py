@@ -66,6 +66,8 @@ Settings = namedtuple("Settings", [
     "t_end",           # [s] the run's end
     "dt_record",       # [s] the ground record's sample interval
     "scale_open", "scale_contact", "err_ref", "scale_accel",  # error scales (solve.error_scales)
+    "episode_dofs",    # (n,) 1 where a contact-phase error is scaled to the episode's indentation
+    "episode_floor", "episode_tighten",  # [-] that scale's floor and factor (solve.episode_scaling)
     # contact events
     "h_contact",       # [s] the step after a closure
     "gap_tol",         # [in] a crossing is located within this of δ = 0

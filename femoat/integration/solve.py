@@ -222,6 +222,8 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
     n = packed.n
     scale_open, scale_contact, err_ref, scale_accel = error_scales(packed, np.abs(ag).max())
     d_me = float(scale_contact[0])
+    episode_dofs, episode_floor, episode_tighten = episode_scaling(integ, scale_open,
+                                                                   scale_contact)
     # first step after closure: a fraction of the local contact half-period π·√(m/k_eff)
     h_contact = math.inf
     for c, w in enumerate(packed.walls):
@@ -245,6 +247,8 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
         h_min=float(integ.min_step), t_end=float(duration), dt_record=float(dt_rec),
         scale_open=scale_open, scale_contact=scale_contact, err_ref=err_ref,
         scale_accel=scale_accel,
+        episode_dofs=episode_dofs, episode_floor=float(episode_floor),
+        episode_tighten=float(episode_tighten),
         h_contact=float(h_contact), gap_tol=float(1e-3 * integ.rtol * d_me),
         record_every=int(integ.record_every), ring=not history,
         stop_at_limit=bool(stop_at_limit),
@@ -479,6 +483,28 @@ def error_scales(packed, pga):
     scale_accel = np.full(n, np.inf)
     scale_accel[:ns] = ACCELERATION_FRACTION * max(pga, ACCELERATION_FLOOR)
     return scale_open, scale_contact, err_ref, scale_accel
+
+
+EPISODE_FLOOR = 0.1
+"""[-] The smallest episode scale, as a fraction of δ_me: an impact whose indentation stays below
+it (a tenth of δ_me: a force of about 3 % of the law's reference impact for a Hertz law) is
+held to that absolute error, so that a touch does not ask for ever smaller steps."""
+EPISODE_TIGHTEN = 0.5
+"""[-] The factor on the episode scale (measured: benchmarks/README.md, issue 26 item 2)."""
+
+
+def episode_scaling(integ, scale_open, scale_contact):
+    """(DOF flags, floor, factor) of the contact phase's episode scale: with an explicit open
+    method, the local error of each DOF measured against δ_me while a contact is closed (the
+    base mat and the walls) is measured instead against ``factor`` × the size of the smallest
+    episode under way (its largest indentation so far, at least ``floor`` × δ_me, at most
+    δ_me): a small impact's peak force is then controlled relative to itself, as a large one's
+    (issue 26). Newmark keeps its scales (flags zero: bit for bit as before)."""
+    flags = np.zeros(scale_open.size, dtype=np.int64)
+    if not methods.module(integ.method).EXPLICIT:
+        return flags, 1.0, 1.0
+    flags[scale_contact < scale_open] = 1
+    return flags, EPISODE_FLOOR, EPISODE_TIGHTEN
 
 
 _INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code", "bearing_kind", "bearing_dofs")

@@ -28,6 +28,7 @@ from femoat.integration.forces import (
     trial_outputs,
 )
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
+from femoat.integration.recording.episodes import EP_MAX_INDENT, EP_PHASE, OPEN
 
 NAME = "newmark"
 """The method's name (``Integrator(method=...)``)."""
@@ -60,6 +61,25 @@ def step_factor(err):
 
 
 @njit(cache=True, inline="always")
+def episode_indentation(any_closed, state, work):
+    """The size of the smallest contact episode under way [in]: over the closed contacts, the
+    largest of the episode's indentation so far and the trial step's end indentation (inf when
+    none is closed). A small impact's force is then controlled on its own scale, not on δ_me's
+    (:func:`femoat.integration.solve.episode_scaling`)."""
+    d_ep = np.inf
+    if not any_closed:
+        return d_ep
+    for c in range(state.c_closed.size):
+        if state.c_closed[c]:
+            d = work.cd[c]
+            if state.ep[c, EP_PHASE] == OPEN and state.ep[c, EP_MAX_INDENT] > d:
+                d = state.ep[c, EP_MAX_INDENT]
+            if d < d_ep:
+                d_ep = d
+    return d_ep
+
+
+@njit(cache=True, inline="always")
 def local_error(hh, any_closed, model, state, settings, work):
     """The largest scaled Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa|/(rtol·scale) of the
     step (1 = at the tolerance), each DOF measured in its own coordinate: a story's drift
@@ -70,9 +90,12 @@ def local_error(hh, any_closed, model, state, settings, work):
     scale = settings.scale_contact if any_closed else settings.scale_open
     err_ref = settings.err_ref
     a, w_a = state.a, work.a
+    d_ep = episode_indentation(any_closed, state, work)
     err = 0.0
     for i in range(a.size):
         sc = scale[i]
+        if any_closed and settings.episode_dofs[i]:
+            sc = min(sc, max(d_ep, settings.episode_floor * sc)) * settings.episode_tighten
         da = w_a[i] - a[i]
         j = err_ref[i]
         if j >= 0:
