@@ -47,7 +47,9 @@ class Integrator:
         solution's for "dp5") is kept below
         rtol × the DOF's scale: a story's drift against its yield drift, the base mat and the
         walls against the gap while all gaps are open and against δ_me while a contact is
-        closed [in], and the building's accelerations against 0.15 × the record's peak ground
+        closed [in] ("dp5", "ark5": against half the largest indentation of the smallest
+        episode under way, between 0.1·δ_me and δ_me, so that a small impact's peak force is
+        held as a large one's), and the building's accelerations against 0.15 × the record's peak ground
         acceleration (at least 0.1 g) [in/s²] while all gaps are open
         (:func:`femoat.integration.solve.error_scales`). Smaller is more accurate and slower.
         Each method's default is chosen so that every peak (impact forces, displacements,

@@ -7,7 +7,10 @@ Step control: the Zienkiewicz-Xie local error h²·|β − 1/6|·|Δa| per DOF, 
 own coordinate (a floor by its story's drift, Δa_i − Δa_ref(i)) and scaled by rtol·scale_i (the
 story's yield drift, the gap; a separate, tighter scale vector while any contact is closed),
 and while all gaps are open each building DOF's acceleration error (K_T·e)_i/m_i against its
-own scale (see :func:`femoat.integration.solve.error_scales`).
+own scale (see :func:`femoat.integration.solve.error_scales`). In the contact phase of a run
+whose open phase is explicit, the DOFs the contacts move are measured against the smallest
+episode under way instead (:func:`episode_indentation`, :func:`femoat.integration.solve.
+episode_scaling`): a small impact's force is held as closely as a large one's.
 
 The method's interface (:mod:`femoat.integration.methods`): :func:`step` (the trial step: is
 it solved, and its scaled error), :func:`retry` (the step to try after one that could not be

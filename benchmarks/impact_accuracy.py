@@ -1,10 +1,15 @@
-"""Every peak of plan runs at the default against converged femoat (issue 26's accuracy target):
-the named peaks of each run and the peak force of every impact of at least 5 kip, one by one.
+"""Every peak at the default against converged femoat (issue 26's accuracy target): the named
+peaks of each run and the peak force of every impact of at least 5 kip, one by one; the 20 paper
+runs in 1D (both wall dampings) and plan runs under far-field pairs.
 
-    python benchmarks/plan_peak_accuracy.py [--pairs 1 2 4 6 8 10 12 15 17 21]
-                                            [--scales 0.5 1 1.5] [--angles 0 30]
-                                            [--rtol DEFAULT] [--method ark5]
-                                            [--reference-rtol 1e-9] [--quick]
+    python benchmarks/impact_accuracy.py [--pairs 1 2 4 6 8 10 12 15 17 21]
+                                         [--scales 0.5 1 1.5] [--angles 0 30]
+                                         [--rtol DEFAULT] [--method ark5]
+                                         [--reference-rtol 1e-9] [--quick] [--no-paper] [--no-plan]
+
+Paper runs: the 5 laws x 2 walls x 2 dampings (published, consistent C_imp) under Erzincan N-S
+(0.91 g, time x 0.5), at the 1D default against Newmark at rtol 1e-8 with steps of at most
+1e-4 s.
 
 Each FEMA P695 far-field pair (normalized, at ``scale`` x the paper building's MCE as the
 bidirectional study anchors it, time x 0.5, rotated by ``angle``) drives the paper building in
@@ -68,6 +73,54 @@ def compare(res, ref):
     return errs[name], name, worst_imp, where, n, mismatch
 
 
+def paper_runs(args):
+    """The 20 paper runs in 1D at the default against Newmark converged: (worst named, worst
+    impact, impacts compared, count mismatches, loop CPU [s], steps)."""
+    from femoat.paper import LAWS, WALLS, paper_model, paper_motion
+
+    ref_int = Integrator(method="newmark", rtol=1e-8, max_step=1e-4)
+    gm = paper_motion()
+    print(f"paper runs in 1D at {Integrator().method} rtol {Integrator().rtol:g} against Newmark "
+          f"rtol 1e-8, max_step 1e-4 s")
+    print(f"{'case':>22s} {'steps':>7s} {'ms':>6s} {'impacts':>7s} {'worst named':>11s} "
+          f"{'which':>10s} {'worst impact':>12s} {'which':>22s}")
+    worst, worst_imp, total, misses, cpu, steps = 0.0, 0.0, 0, [], 0.0, 0
+    for damping in ("published", "consistent"):
+        for wall in WALLS:
+            for law in LAWS:
+                model = paper_model(wall, law, damping=damping)
+                run(model, gm)  # (caches)
+                res, ref = run(model, gm), run(model, gm, ref_int)
+                a, b = res.peaks, ref.peaks
+                errs = {}
+                for k in ("peak_impact_force", "peak_base_displacement",
+                          "peak_wall_displacement", "peak_base_acceleration"):
+                    if b[k]:
+                        errs[k.replace("peak_", "")] = abs(a[k] - b[k]) / abs(b[k])
+                for k, short in (("peak_drift", "d"), ("peak_floor_acceleration", "a")):
+                    for i, (x, y) in enumerate(zip(a[k], b[k])):
+                        errs[f"{short}{i + 1}"] = abs(x - y) / abs(y)
+                name = max(errs, key=errs.get)
+                ei, where, n = 0.0, "-", 0
+                if len(res.impacts) == len(ref.impacts):
+                    for r, q in zip(res.impacts, ref.impacts):
+                        if q["peak_force"] >= SMALL:
+                            n += 1
+                            e = abs(r["peak_force"] - q["peak_force"]) / q["peak_force"]
+                            if e > ei:
+                                ei, where = e, f"@{q['start']:.2f}s {q['peak_force']:.1f}kip"
+                else:
+                    misses.append(f"{damping}/{wall}/{law}")
+                worst, worst_imp, total = max(worst, errs[name]), max(worst_imp, ei), total + n
+                cpu, steps = cpu + a["cpu_seconds"], steps + a["steps"]
+                label = f"{damping[:4]}/{wall}/{law}"
+                print(f"{label:>22s} {a['steps']:7d} {a['cpu_seconds'] * 1e3:6.1f} {n:7d} "
+                      f"{errs[name]:11.1e} {name:>10s} {ei:12.1e} {where:>22s}", flush=True)
+    print(f"paper runs: worst named peak {worst:.1e}; worst impact >= {SMALL:g} kip "
+          f"{worst_imp:.1e} ({total} impacts); count mismatches: {misses or 'none'}; "
+          f"{steps} steps, {cpu * 1e3:.0f} ms of loop CPU in all\n")
+
+
 def pairs(args):
     from femoat.studies.bidirectional import full_anchor
 
@@ -89,7 +142,13 @@ def main(argv=None):
     ap.add_argument("--rtol", type=float, default=None, help="default: the method's default")
     ap.add_argument("--reference-rtol", type=float, default=1e-9)
     ap.add_argument("--quick", action="store_true", help="pairs 1 and 6 at the MCE only")
+    ap.add_argument("--no-paper", action="store_true", help="skip the 20 paper runs")
+    ap.add_argument("--no-plan", action="store_true", help="skip the plan runs")
     args = ap.parse_args(argv)
+    if not args.no_paper:
+        paper_runs(args)
+    if args.no_plan:
+        return
     if args.quick:
         args.pairs, args.scales = [1, 6], [1.0]
     model = PlanModel(walls=rectangular_moat("concrete", "H", gap=4.0))
