@@ -23,8 +23,6 @@ printed and counts as a miss. Prints; nothing is asserted.
 import argparse
 import time
 
-import numpy as np
-
 from femoat.ground_motions import RecordPair, fema_p695_pair
 from femoat.integration import Integrator
 from femoat.plan import PlanModel, rectangular_moat
