@@ -226,3 +226,25 @@ def test_a_tiny_record_does_not_ask_for_unbounded_steps():
         steps.append(r.meta["stats"]["steps"])
     assert steps[1] == pytest.approx(steps[0], rel=0.01)
     assert steps[0] < 10000
+
+
+@pytest.mark.parametrize("wall, law", [("steel", "M"), ("concrete", "M"), ("concrete", "J")])
+def test_every_impact_of_a_chattering_paper_run_is_within_1e_3(wall, law):
+    # The consistent-damping paper runs chatter: 6-13 impacts of 1.7 to 48 kip, most of them a
+    # tenth to a third of δ_me deep. Measured against δ_me in contact, their wall DOFs' errors
+    # were a large part of such an indentation: 13.2 and 12.3 kip impacts of steel/M 3.0e-3
+    # and 2.9e-3 off, concrete/M's first 1.7e-3, concrete/J 1.2e-3 (benchmarks/README.md, issue
+    # 26 item 2). With the contact error measured on each episode's own indentation
+    # (solve.episode_scaling), every impact of at least 5 kip (the issue's threshold) is within
+    # 1e-3 of the converged run (measured 5.7e-4, 7.3e-4, 4.2e-4), one by one, and the count
+    # is the same. The first 4 s of the record hold every impact of these runs (1.6-2.9 s).
+    model = paper_model(wall, law, damping="consistent")
+    motion = paper_motion(quick=True)
+    got, ref = run(model, motion).impacts, run(model, motion, CONVERGED).impacts
+    assert len(got) == len(ref) >= 6
+    strong = [(g, r) for g, r in zip(got, ref) if r["peak_force"] >= 5.0]
+    assert len(strong) >= 5
+    for g, r in strong:
+        assert g["side"] == r["side"]
+        assert g["peak_force"] == pytest.approx(r["peak_force"], rel=1e-3)
+        assert g["start"] == pytest.approx(r["start"], abs=1e-4)
