@@ -32,6 +32,11 @@ from femoat.bearings.lead_rubber import (
     plan_energy as _plan_energy_1,
     plan_branch as _plan_branch_1,
     plan_turn_direction as _plan_turn_direction_1,
+    plan_rate_active as _plan_rate_active_1,
+    plan_rate_state as _plan_rate_state_1,
+    plan_rate as _plan_rate_1,
+    plan_rate_force as _plan_rate_force_1,
+    plan_rate_commit as _plan_rate_commit_1,
 )
 from femoat.bearings.triple_friction_pendulum import (
     axis_trial as _axis_trial_2,
@@ -162,6 +167,8 @@ def bearing_plan_rate_active(kind, p, s, vx, vy):
     """:func:`plan_rate_active` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_rate_active_0(p, s, vx, vy)
+    if kind == 1:
+        return _plan_rate_active_1(p, s, vx, vy)
     return False
 
 
@@ -170,6 +177,8 @@ def bearing_plan_rate_state(kind, s):
     """:func:`plan_rate_state` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_rate_state_0(s)
+    if kind == 1:
+        return _plan_rate_state_1(s)
     return (np.nan, np.nan)
 
 
@@ -178,6 +187,8 @@ def bearing_plan_rate(kind, p, zx, zy, vx, vy):
     """:func:`plan_rate` of bearing kind ``kind``."""
     if kind == 0:
         return _plan_rate_0(p, zx, zy, vx, vy)
+    if kind == 1:
+        return _plan_rate_1(p, zx, zy, vx, vy)
     return (np.nan, np.nan, np.nan, np.nan, np.nan, np.nan)
 
 
@@ -187,6 +198,9 @@ def bearing_plan_rate_force(kind, p, s, ux, uy, vx, vy, zx, zy, f, k, c):
     if kind == 0:
         _plan_rate_force_0(p, s, ux, uy, vx, vy, zx, zy, f, k, c)
         return
+    if kind == 1:
+        _plan_rate_force_1(p, s, ux, uy, vx, vy, zx, zy, f, k, c)
+        return
 
 
 @njit(cache=True)
@@ -194,4 +208,7 @@ def bearing_plan_rate_commit(kind, p, s, ux, uy, vx, vy, zx, zy):
     """:func:`plan_rate_commit` of bearing kind ``kind``."""
     if kind == 0:
         _plan_rate_commit_0(p, s, ux, uy, vx, vy, zx, zy)
+        return
+    if kind == 1:
+        _plan_rate_commit_1(p, s, ux, uy, vx, vy, zx, zy)
         return

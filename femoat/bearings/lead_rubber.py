@@ -565,9 +565,87 @@ def plan_energy(p, s):
 
 @njit(cache=True)
 def plan_branch(p, s, ux, uy):
-    """Always 0: the force is continuously differentiable along a monotonic step (module
-    docstring); the kinks are the reversals, which :func:`plan_turn_direction` locates."""
-    return 0
+    """The phase at the trial (ux, uy) [in] reached along the chord from the committed state:
+    1 loading (z·Δu >= 0 at its end), 0 still unloading. The end of unloading is where the
+    path's coefficient changes (γ − β to β + γ): in plan, where z is across the motion, the
+    tangent across it changes there, and beyond it z depends on the path again; the kink search
+    lands a step on it. (The other kinks are the reversals, which :func:`plan_turn_direction`
+    locates.)"""
+    dx, dy = ux - s[_UCX], uy - s[_UCY]
+    zx, zy = s[_ZCX], s[_ZCY]
+    if zx * dx + zy * dy >= 0.0 or dx * dx + dy * dy == 0.0:
+        return 1
+    one_d = zx * dy - zy * dx == 0.0
+    return 0 if _unloading_end(p, p[_GAMMA] - p[_BETA], one_d, zx, zy, dx, dy) >= 1.0 else 1
+
+
+# ---- in plan, the rate form (the coupled-friction step, femoat.integration.methods.ark5) -------
+
+
+Z_CARRY = 1e-6
+"""[-] |z| from which the rate form carries z. At z = 0 the rule for η < 2 has no direction to
+carry (its rate is continuous there, its Jacobian bounded, its higher derivatives not), so a
+virgin bearing's first step follows the step's path; from this |z| on z is carried (at 0.05
+the path's share of a circular orbit set a second-order floor, benchmarks/README.md)."""
+
+
+@njit(cache=True)
+def plan_rate_active(p, s, vx, vy):
+    """True when the committed z is at least Z_CARRY long and the velocity (vx, vy) [in/s]
+    loads it (z·v > 0): over a step from here z is a state with the loading rate
+    :func:`plan_rate`. Unloading (z·v < 0) follows the step's path from the committed state
+    (for β = γ exactly: z + A·Δu/u_y does not depend on the path)."""
+    zx, zy = s[_ZCX], s[_ZCY]
+    return zx * zx + zy * zy >= Z_CARRY * Z_CARRY and zx * vx + zy * vy > 0.0
+
+
+@njit(cache=True)
+def plan_rate_state(s):
+    """The committed rate-form variable: z (z_x, z_y) [-]."""
+    return s[_ZCX], s[_ZCY]
+
+
+@njit(cache=True)
+def plan_rate(p, zx, zy, vx, vy):
+    """(g_x, g_y, ∂g_x/∂z_x, ∂g_x/∂z_y, ∂g_y/∂z_x, ∂g_y/∂z_y): the loading rule's rate
+    ż = g(z, v) = (A·v − (β + γ)·|z|^(η−2)·(z·v)·z)/u_y [1/s] at z and the velocity (vx, vy)
+    [in/s], and its Jacobian (the path integration's :func:`_rates` with the velocity as the
+    segment). The coefficient is the loading one throughout: a step carries z only while
+    loading, and the reversals are landed on (:func:`plan_rate_commit`)."""
+    return _rates(p[_BETA] + p[_GAMMA], p[_ETA], p[_UY], zx, zy, vx, vy, 1.0, 0.0, 0.0, 1.0,
+                  0.0)
+
+
+@njit(cache=True)
+def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
+    """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` (zero) (2, 2) in place at
+    (ux, uy) [in] with the state z = (zx, zy) [-] given (a stage's): f = K_d·u + Q_d·z (z a
+    state: the hysteretic term adds no stiffness)."""
+    qd, kd = p[_QD], p[_KD]
+    f[0] = kd * ux + qd * zx
+    f[1] = kd * uy + qd * zy
+    k[0, 0] = kd
+    k[0, 1] = 0.0
+    k[1, 0] = 0.0
+    k[1, 1] = kd
+    c[0, 0] = 0.0
+    c[0, 1] = 0.0
+    c[1, 0] = 0.0
+    c[1, 1] = 0.0
+
+
+@njit(cache=True)
+def plan_rate_commit(p, s, ux, uy, vx, vy, zx, zy):
+    """Commit the end (ux, uy) of a step that carried z, z = (zx, zy) its end value, and z's
+    direction as the turning direction whatever the tangents (every reversal of a carried z is
+    then landed on: the loading rate must not run past one)."""
+    s[_UCX] = ux
+    s[_UCY] = uy
+    s[_ZCX] = zx
+    s[_ZCY] = zy
+    rho = np.sqrt(zx * zx + zy * zy)
+    s[_TX] = zx / rho
+    s[_TY] = zy / rho
 
 
 @njit(cache=True)

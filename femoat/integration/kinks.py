@@ -7,6 +7,7 @@ import numpy as np
 
 from femoat.bearings.dispatch import (
     bearing_plan_branch,
+    bearing_plan_rate,
     bearing_plan_rate_state,
     bearing_plan_turn_direction,
 )
@@ -96,20 +97,44 @@ def _bearing_turn(e, hh, model, state, work, fine):
     """Fraction θ just past the point where the plan bearing ``e`` turns back (its velocity along
     its committed turning direction, e.g. a sliding bearing's friction direction, crosses zero:
     it unloads), 2 when it does not turn inside the step or has no such direction; ``fine``:
-    off a line, FINE_RESOLUTION past it."""
-    zx, zy = bearing_plan_turn_direction(model.b_kind[e], state.b_S[e])
+    off a line, FINE_RESOLUTION past it. A step that carried the bearing's friction state z
+    (``work.b_rate``) turns where z·v crosses zero, z moving in the step: r = z·v with
+    ṙ = g(z, v)·v + z·a at both ends (z's rate g from the kind's rate form, zero on a line,
+    where this is the committed direction's search to the bit). Landed there, the next step
+    starts unloading and does not carry z past the turn."""
+    kind = model.b_kind[e]
+    zx, zy = bearing_plan_turn_direction(kind, state.b_S[e])
     if zx == 0.0 and zy == 0.0:
         return 2.0
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-    r0 = zx * state.v[ix] + zy * state.v[iy]
-    r1 = zx * work.v[ix] + zy * work.v[iy]
+    v0x, v0y, v1x, v1y = state.v[ix], state.v[iy], work.v[ix], work.v[iy]
+    r0 = zx * v0x + zy * v0y
+    dr0 = zx * state.a[ix] + zy * state.a[iy]
+    moved = False
+    if work.b_rate[e]:
+        p = model.b_P[e]
+        z0x, z0y = bearing_plan_rate_state(kind, state.b_S[e])
+        z1x, z1y = work.bz[e, 0], work.bz[e, 1]
+        g0 = bearing_plan_rate(kind, p, z0x, z0y, v0x, v0y)
+        g1 = bearing_plan_rate(kind, p, z1x, z1y, v1x, v1y)
+        r0 = z0x * v0x + z0y * v0y
+        dr0 = (z0x * state.a[ix] + z0y * state.a[iy]) + (g0[0] * v0x + g0[1] * v0y)
+        r1 = z1x * v1x + z1y * v1y
+        dr1 = (z1x * work.a[ix] + z1y * work.a[iy]) + (g1[0] * v1x + g1[1] * v1y)
+        moved = z1x != z0x or z1y != z0y
+    else:
+        r1 = zx * v1x + zy * v1y
+        dr1 = zx * work.a[ix] + zy * work.a[iy]
     if not (r0 > 0.0 and r1 < 0.0):
         return 2.0
-    th = crossing(r0, zx * state.a[ix] + zy * state.a[iy], r1,
-                  zx * work.a[ix] + zy * work.a[iy], hh)
+    th = crossing(r0, dr0, r1, dr1, hh)
     res = FINE_RESOLUTION if fine and _off_line(e, model, state, work) else KINK_RESOLUTION
-    if th <= res or th >= 1.0:
+    if th >= 1.0:
         return 2.0
+    if th <= res:
+        # a turn at the step's start: the landing before fell just short of it (its crossing
+        # is an estimate). A carried z that moves must not run past it: a sliver past it.
+        return 2.0 * res if moved else 2.0
     return min(1.0, th + res)
 
 
