@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 from conftest import opensees_or_skip
-from scipy.integrate import solve_ivp
+from scipy.integrate import quad, solve_ivp
 from scipy.special import digamma
 
 from femoat.bearings import lead_rubber as lrb
@@ -348,13 +348,29 @@ def test_steady_circular_orbit(bearing):
     assert lag_errors[1] < 5e-5 and force_errors[1] < 2e-5
     assert math.log2(lag_errors[0] / lag_errors[1]) == pytest.approx(2.0, abs=0.05)
     assert math.log2(force_errors[0] / force_errors[1]) == pytest.approx(2.0, abs=0.05)
-    # the turning direction is z's (on the cap a reversal is a kink) and the branch is constant
+    # the turning direction is z's (on the cap a reversal is a kink); the branch is the phase
+    # at the chord's end: loading ahead (z·Δu > 0), still unloading on a chord straight back
+    # along z shorter than the unloading's length, loading beyond it. Straight back along z
+    # the rule is one-axis: u_y·d|z|/ds = −(A − (γ − β)·|z|^η) until z = 0 (a = z·d = 0), a
+    # length L = u_y·∫₀^ρ dr/(A − (γ − β)·r^η) (ρ·u_y/A for β = γ), integrated by quad here
     p, s = bearing.params(), bearing.initial_state_plan()
     for ux, uy in u:
         lrb.plan_commit(p, s, 0, 0, 0, 0, ux, uy, 0, 0, 0.01)
     np.testing.assert_allclose(lrb.plan_turn_direction(s), z_last[-1] / np.linalg.norm(z_last[-1]),
                                rtol=1e-12)
-    assert lrb.plan_branch(p, s, 0.3, -0.2) == 0
+    zc = s[2:4]
+    assert lrb.plan_branch(p, s, 3.0 + 0.1 * zc[0], 0.1 * zc[1]) == 1  # ahead: loading
+    length = bearing.u_y * quad(lambda r: 1.0 / (lrb.A - (bearing.gamma - bearing.beta)
+                                                  * r ** bearing.eta), 0.0, rho)[0]
+    back = -length
+    for frac, phase in ((0.5, 0), (0.99, 0), (1.01, 1), (5.0, 1)):
+        assert lrb.plan_branch(p, s, 3.0 + frac * back * zc[0] / rho,
+                               frac * back * zc[1] / rho) == phase
+    # along z the same chord ends unloading at z = 0, with a continuous tangent: no kink, 1
+    s_axis = s.copy()
+    s_axis[1] = 0.0
+    s_axis[2:4] = (rho, 0.0)
+    assert lrb.plan_branch(p, s_axis, 3.0 - 0.5 * length, 0.0) == 1
 
 
 def circle_with_velocities(r, n, cycles, dt):

@@ -66,13 +66,23 @@ z·v > 0, else unloading). ∂f/∂v = 0: the path's shape depends on the end ve
 of order tau, which the tangent leaves out.
 
 Branches: the force is continuously differentiable along any path except where the path reverses
-(z·du changes sign with z != 0, the loading and unloading coefficients differ by 2β|z|^η); at the
-end of unloading inside a chord (a = 0) the nonlinear term is zero on both sides. So
-:func:`plan_branch` is constant (0: there is no kink inside a monotonic step) and the reversals
-are found by the solver's turning-point search along :func:`plan_turn_direction`: the committed
-z direction when a reversal there changes the tangent by more than :data:`TURN_RATIO` (the 1D
+(z·du changes sign with z != 0, the loading and unloading coefficients differ by 2β|z|^η) and,
+in plan, where unloading ends (a = 0 with z across the motion: the nonlinear term is zero on
+both sides, its derivative across the motion is not). :func:`plan_branch` gives the phase at the
+end of the chord (1 loading, 0 unloading; on one axis always 1, unloading ending at z = 0 with a
+continuous tangent), so the kink search lands on the end of unloading; the reversals are found
+by the solver's turning-point search along :func:`plan_turn_direction`: the committed z
+direction when a reversal there changes the tangent by more than :data:`TURN_RATIO` (the 1D
 solver's criterion for materials, femoat.integration.kinks.KINK_RATIO), else (0, 0). Since the
 kernel has no parameters, :func:`plan_commit` stores that direction in the state.
+
+Rate form (the coupled-friction step, femoat.integration.methods.ark5): while loading
+(z·v > 0, |z| >= :data:`Z_CARRY`) z is a state of the step with the loading rule as its rate,
+ż = (A·v − (β + γ)·|z|^(η−2)·(z·v)·z)/u_y, and f = K_d·u + Q_d·z; unloading follows the
+step's path from the committed state as above (for β = γ exactly: z + A·Δu/u_y). A carried
+step's commit sets the turning direction to z's whatever the tangents: every reversal of a
+carried z is landed on (searched on z·v with z moving in the step), so the loading rate never
+runs past one.
 
 Recoverable energy: K_d·|u|²/2 + Q_d·u_y·|z|²/(2A), the hysteretic spring's as if unloaded at
 its elastic stiffness Q_d·A/u_y (exact for β = γ).
@@ -569,14 +579,16 @@ def plan_branch(p, s, ux, uy):
     1 loading (z·Δu >= 0 at its end), 0 still unloading. The end of unloading is where the
     path's coefficient changes (γ − β to β + γ): in plan, where z is across the motion, the
     tangent across it changes there, and beyond it z depends on the path again; the kink search
-    lands a step on it. (The other kinks are the reversals, which :func:`plan_turn_direction`
-    locates.)"""
+    lands a step on it. Along z (one axis) unloading ends at z = 0 with a continuous tangent:
+    no kink, 1 throughout, as the one-axis bearing. (The other kinks are the reversals, which
+    :func:`plan_turn_direction` locates.)"""
     dx, dy = ux - s[_UCX], uy - s[_UCY]
     zx, zy = s[_ZCX], s[_ZCY]
     if zx * dx + zy * dy >= 0.0 or dx * dx + dy * dy == 0.0:
         return 1
-    one_d = zx * dy - zy * dx == 0.0
-    return 0 if _unloading_end(p, p[_GAMMA] - p[_BETA], one_d, zx, zy, dx, dy) >= 1.0 else 1
+    if zx * dy - zy * dx == 0.0:
+        return 1  # along z (one axis): unloading ends at z = 0, where the tangent is continuous
+    return 0 if _unloading_end(p, p[_GAMMA] - p[_BETA], False, zx, zy, dx, dy) >= 1.0 else 1
 
 
 # ---- in plan, the rate form (the coupled-friction step, femoat.integration.methods.ark5) -------
