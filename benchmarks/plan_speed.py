@@ -12,6 +12,7 @@ the plan run (ark5, the default of a plan run on a friction pendulum; and Newmar
 default before it) against the 1D model along x under the x component (its default dp5, and
 Newmark). The worst peak errors are against the plan run converged (Newmark, rtol 1e-8).
 ``--mce``: the full pairs at the MCE, time x 0.5, at 0 and 30 degrees (issue 26's targets).
+``--isolator lrb``: the building on the default lead-rubber bearing instead.
 """
 
 import argparse
@@ -21,7 +22,7 @@ import numpy as np
 
 from femoat.ground_motions import GroundMotion, RecordPair, fema_p695_pair
 from femoat.integration import Integrator
-from femoat.plan import PlanModel, rectangular_moat
+from femoat.plan import PlanBuilding, PlanModel, rectangular_moat
 from femoat.run import run
 
 
@@ -78,8 +79,16 @@ def main(argv=None):
     ap.add_argument("--mce", action="store_true",
                     help="full pairs at the MCE, time x 0.5, at --angles (issue 26's targets)")
     ap.add_argument("--angles", type=float, nargs="+", default=[0.0, 30.0])
+    ap.add_argument("--isolator", choices=("fp", "lrb"), default="fp",
+                    help="the building's bearing: the paper's friction pendulum or the default "
+                         "lead-rubber bearing (both on their rate form: ark5)")
     args = ap.parse_args(argv)
-    model = PlanModel(walls=rectangular_moat("concrete", "H", gap=4.0))
+    building = PlanBuilding()
+    if args.isolator == "lrb":
+        from femoat.bearings.lead_rubber import LeadRubberBearing
+
+        building = PlanBuilding(isolator=LeadRubberBearing())
+    model = PlanModel(building, walls=rectangular_moat("concrete", "H", gap=4.0))
     along = model.along("x")
     newmark = Integrator(method="newmark")
     print(f"{'pair':>7s} {'plan ms':>8s} {'steps':>7s} {'1D dp5 ms':>10s} {'steps':>7s} "
