@@ -10,6 +10,7 @@ displacement u_y,i = q_i/(k_0 − kr_i), gaps g_i.
 
 import itertools
 import math
+import re
 
 import numpy as np
 import pytest
@@ -729,3 +730,85 @@ def test_the_kind_provides_the_contract():
     assert BEARING.params().shape == (tfp.N_PARAMS,)
     assert BEARING.initial_state_axis().shape == (tfp.N_STATE_AXIS,)
     assert BEARING.initial_state_plan().shape == (tfp.N_STATE_PLAN,)
+
+
+# ----------------------------------------------------------- the manufacturer's geometry
+
+# A bearing given as a manufacturer gives it (OpenSees' indices: 1 the inner surfaces, 2 and 3
+# the outer ones), by hand: L_i = R_i − h_i and d_i = d_i,nominal·L_i/R_i (module docstring)
+#   inner:  R1 = 16,  h1 = 4  ->  L1 = 12;  d1 = 2·12/16   = 1.5
+#   outer:  R2 = 96,  h2 = 8  ->  L2 = 88;  d2 = 18·88/96  = 16.5
+#   outer:  R3 = 100, h3 = 4  ->  L3 = 96;  d3 = 20·96/100 = 19.2
+GEOMETRY = {"R1": 16.0, "R2": 96.0, "R3": 100.0, "h1": 4.0, "h2": 8.0, "h3": 4.0,
+            "d1_nominal": 2.0, "d2_nominal": 18.0, "d3_nominal": 20.0}
+EFFECTIVE = {"L1": 12.0, "L2": 88.0, "L3": 96.0, "d1": 1.5, "d2": 16.5, "d3": 19.2}
+
+
+def test_from_geometry_gives_effective_radii_and_actual_capacities():
+    b = TripleFrictionPendulum.from_geometry(**GEOMETRY, mu1=0.01, mu2=0.04, mu3=0.08,
+                                             u_y=0.02, W=50.0)
+    for name, value in EFFECTIVE.items():
+        assert getattr(b, name) == pytest.approx(value, rel=1e-15), name
+    assert (b.mu1, b.mu2, b.mu3, b.u_y, b.W) == (0.01, 0.04, 0.08, 0.02, 50.0)
+    # ultimate displacement 2·d1 + d2 + d3 − L1·|d2/L2 − d3/L3|
+    #   = 3 + 16.5 + 19.2 − 12·|0.1875 − 0.2| = 38.7 − 0.15 = 38.55 in
+    # (the nominal capacities would have said 2·2 + 18 + 20 = 42 in)
+    assert b.capacity == pytest.approx(38.55, rel=1e-14)
+    # friction, u_y and W left out: the dataclass's defaults
+    assert TripleFrictionPendulum.from_geometry(**GEOMETRY) == TripleFrictionPendulum(
+        **EFFECTIVE)
+
+
+@pytest.mark.parametrize(("changes", "name"), [
+    ({"R1": 0.0}, "R1"), ({"R3": float("inf")}, "R3"), ({"R2": "96"}, "R2"),
+    ({"h1": 0.0}, "h1"), ({"h3": -1.0}, "h3"),
+    ({"h2": 96.0}, "h2"), ({"h1": 20.0}, "h1"),  # h >= R: no effective radius
+    ({"d1_nominal": 0.0}, "d1_nominal"), ({"d2_nominal": float("nan")}, "d2_nominal"),
+    ({"R2": 20.0}, "R2 − h2"),  # L2 = 12 = L1: the outer surface not the flatter one
+    ({"R1": 100.0, "h1": 2.0}, "R2 − h2"),  # L1 = 98 > L2 = 88: inner and outer swapped
+    ({"mu2": 0.005}, "mu2"),  # the dataclass's own checks on the effective bearing
+])
+def test_from_geometry_refuses_bad_geometry_by_name(changes, name):
+    with pytest.raises(ValueError, match=rf"^{re.escape(name)} = "):
+        TripleFrictionPendulum.from_geometry(**{**GEOMETRY, **changes})
+
+
+def _isolator_model(iso, plan=False):
+    from femoat.scenario import model_from_dict
+
+    return model_from_dict({"building": {"plan": plan, "isolator": {"type": "tfp", **iso}}})
+
+
+@pytest.mark.parametrize("plan", [False, True], ids=["1D", "plan"])
+def test_a_scenario_takes_the_geometry_for_the_effective_keys(plan):
+    # The same model, W the building's weight in both (not given); friction keys beside the
+    # geometry are the class's fields as usual.
+    assert _isolator_model(GEOMETRY, plan) == _isolator_model(EFFECTIVE, plan)
+    mu = {"mu1": 0.01, "mu2": 0.04, "mu3": 0.08}
+    assert _isolator_model({**GEOMETRY, **mu}, plan) == _isolator_model({**EFFECTIVE, **mu},
+                                                                          plan)
+
+
+@pytest.mark.parametrize(("iso", "message"), [
+    ({**GEOMETRY, "L2": 88.0, "d3": 19.2}, r"L2, d3 with R1, .*remove L2, d3"),  # mixed
+    ({**EFFECTIVE, "R1": 16.0}, r"L1, L2, L3, d1, d2, d3 with R1: "),  # mixed the other way
+    ({k: v for k, v in GEOMETRY.items() if k != "h2"}, r"h2: missing"),  # no defaults
+    ({**GEOMETRY, "h2": 96.0}, r"h2 = 96\.0 \[in\]: must be < R2"),  # the class's message
+    ({**GEOMETRY, "R2": "96"}, r"R2 = '96': expected a number"),
+    ({**GEOMETRY, "R": 30.0}, r": unknown key\(s\) \['R'\]; allowed: \['R1', "),
+])
+def test_a_scenario_refuses_a_mixed_or_bad_geometry_table(iso, message):
+    with pytest.raises(ValueError, match=r"^\[building\.isolator\] ?" + message):
+        _isolator_model(iso)
+
+
+def test_a_suite_may_vary_the_geometry_keys():
+    from femoat.suite.model import build_variation
+    from femoat.suite.variations import allowed_keys, apply, variations_from_dict
+
+    assert set(tfp.GEOMETRY_KEYS) <= allowed_keys()["building.isolator"]
+    _, combos = variations_from_dict({"building.isolator.h2": [8.0, 16.0]})
+    base = {"building": {"isolator": {"type": "tfp", **GEOMETRY}}}
+    isos = [build_variation(apply(base, c)).pounding.building.isolator for c in combos]
+    # h2 = 16: L2 = 96 − 16 = 80, d2 = 18·80/96 = 15
+    assert [(b.L2, b.d2) for b in isos] == [(88.0, 16.5), (80.0, 15.0)]

@@ -7,7 +7,9 @@ is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
   ``N_PARAMS``, ``N_STATE_AXIS``, ``N_STATE_PLAN`` (its params and committed-state widths on one
   axis and in plan), ``AXIS_CLASS`` and ``PLAN_CLASS`` (its validated frozen dataclasses, with
   units; they may be one class), each with ``params()``, ``initial_state_axis()``,
-  ``initial_state_plan()``, ``yield_deformation`` [in] and ``capacity`` [in];
+  ``initial_state_plan()``, ``yield_deformation`` [in] and ``capacity`` [in]; optionally
+  ``GEOMETRY_KEYS``, scenario keys that may replace its fields ``GEOMETRY_REPLACES``, read by
+  ``AXIS_CLASS.from_geometry`` (the triple friction pendulum's manufacturer geometry);
 * compiled kernels (numba, no allocation), each from the committed state ``s``, which only the
   commits modify (a kind may keep scratch slots after it in ``s``, which its plan trials write
   while they walk a step's path: the triple friction pendulum's):

@@ -7,6 +7,23 @@ each), L2 and L3 those of the two outer surfaces (friction μ2 and μ3, capaciti
 In Fenz & Constantinou's (2008) notation 1, 2/3, 4: L2 = R_eff1, L1 = R_eff2 = R_eff3,
 L3 = R_eff4, μ2 = μ_1, μ1 = μ_2 = μ_3, μ3 = μ_4, d2 = d_1, d1 = d_2 = d_3, d3 = d_4.
 
+Effective and manufacturer's notation (:meth:`TripleFrictionPendulum.from_geometry`). A
+manufacturer (and Fenz & Constantinou, 2008) gives each surface's actual radius of curvature R,
+the height h of the slider's pivot above it and its nominal displacement capacity d* (the
+slider's travel along the surface to the restrainer). The pivot moves on a circle of radius
+R − h concentric with the surface: a rotation θ moves the slider R·θ along the surface and the
+pivot, hence the bearing, (R − h)·θ. So the pendulum's length is the effective radius
+L = R − h, and the actual capacity, the bearing's displacement on that surface when the slider
+meets the restrainer, is d = d*·(R − h)/R, a little less than d*. This class's L1..L3 and
+d1..d3, like OpenSees' (whose documentation defines L_i = R_i − h_i, and whose
+TripleFrictionPendulumX, the same series model, takes d_i as the actual capacities, L_i/R_i
+times the nominal ones), are the effective radii and the actual capacities. ``from_geometry``
+takes R1..R3, h1..h3 and d1_nominal..d3_nominal [in] with OpenSees' indices (1 the two inner
+surfaces, 2 and 3 the outer ones; in Fenz & Constantinou's: R1 = R_2 = R_3, R2 = R_1, R3 = R_4,
+h and d* alike) and returns L_i = R_i − h_i, d_i = d_i,nominal·L_i/R_i. (Fenz & Constantinou
+star the nominal capacity, d_i*; TripleFrictionPendulumX's documentation stars the actual one:
+hence the spelled-out ``_nominal``.)
+
 Series model (Fenz & Constantinou, 2008): three plan friction pendulums in series carry the same
 force F [kip] and add up to the bearing's displacement u = d_1 + d_2 + d_3 [in]:
 
@@ -149,6 +166,13 @@ from femoat.compilation.jit import njit
 
 KEY = "tfp"
 """The bearing's key in scenario and suite files (``[building.isolator] type = "tfp"``)."""
+
+GEOMETRY_KEYS = ("R1", "R2", "R3", "h1", "h2", "h3", "d1_nominal", "d2_nominal", "d3_nominal")
+"""The manufacturer's geometry [in] (:meth:`TripleFrictionPendulum.from_geometry`): keys a
+``[building.isolator]`` table of this kind may give instead of :data:`GEOMETRY_REPLACES`."""
+
+GEOMETRY_REPLACES = ("L1", "L2", "L3", "d1", "d2", "d3")
+"""The fields the geometry determines (a table gives these or :data:`GEOMETRY_KEYS`, not both)."""
 
 N_PARAMS = 16
 N_STATE_PLAN = 24  # the committed internal state, then the scratch slots of a path's pieces
@@ -468,9 +492,10 @@ class TripleFrictionPendulum(BearingFaces):
     L2, L3 : float
         Effective radii of the two outer surfaces [in], > L1.
     d1 : float
-        Displacement capacity of the inner slider on each inner surface [in], > 0.
+        Displacement capacity of the inner slider on each inner surface [in], > 0: the actual
+        one, nominal·L/R (a manufacturer's R, h, nominal d: :meth:`from_geometry`).
     d2, d3 : float
-        Displacement capacities on the outer surfaces of L2 and L3 [in], > 0.
+        Displacement capacities on the outer surfaces of L2 and L3 [in], > 0 (actual).
     mu1 : float
         Friction coefficient of the inner surfaces [-], > 0.
     mu2, mu3 : float
@@ -526,6 +551,49 @@ class TripleFrictionPendulum(BearingFaces):
                 f"u_y = {self.u_y!r} [in]: must be < 3·mu1·min(2·L1, L2 − L1, L3 − L1) = "
                 f"{limit!r} (the series elements' sticking stiffness 3·mu1·W/u_y must exceed "
                 "their pendulum stiffness); use a smaller u_y (≈ 0.01 in).")
+
+    @classmethod
+    def from_geometry(cls, *, R1, R2, R3, h1, h2, h3, d1_nominal, d2_nominal, d3_nominal,
+                      mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y, W=W):
+        """The bearing of a manufacturer's geometry (module docstring): effective radii
+        L_i = R_i − h_i [in] and actual capacities d_i = d_i,nominal·L_i/R_i [in].
+
+        Parameters (OpenSees' indices: 1 the two inner surfaces, 2 and 3 the outer ones)
+        ----------
+        R1, R2, R3 : float
+            Radii of curvature of the inner surfaces (each) and of the outer surfaces [in], > 0.
+        h1, h2, h3 : float
+            Heights of the slider's pivot above those surfaces [in], 0 < h_i < R_i.
+        d1_nominal, d2_nominal, d3_nominal : float
+            Nominal displacement capacities on those surfaces (the slider's travel along the
+            surface to its restrainer) [in], > 0.
+        mu1, mu2, mu3, u_y, W
+            As the class's fields (their defaults), μ [-], u_y [in], W [kip].
+
+        The class then checks the effective bearing (e.g. μ1 < μ2 ≤ μ3); R2 − h2 and R3 − h3
+        must exceed R1 − h1 (the outer surfaces are the flatter ones).
+        """
+        # (the keyword defaults are the dataclass's: the class body's field names)
+        geometry = ((1, R1, h1, d1_nominal), (2, R2, h2, d2_nominal), (3, R3, h3, d3_nominal))
+        for i, radius, height, nominal in geometry:
+            _checks.positive(f"R{i}", radius, "[in]")
+            _checks.positive(f"h{i}", height, "[in]")
+            if not height < radius:
+                raise ValueError(
+                    f"h{i} = {height!r} [in]: must be < R{i} = {radius!r} [in] (h is the height "
+                    "of the slider's pivot above the surface, R the surface's radius of "
+                    f"curvature: the effective radius R{i} − h{i} must be > 0); check R{i} and "
+                    f"h{i}.")
+            _checks.positive(f"d{i}_nominal", nominal, "[in]")
+        L1, L2, L3 = R1 - h1, R2 - h2, R3 - h3
+        for i, radius in ((2, L2), (3, L3)):
+            if not radius > L1:
+                raise ValueError(
+                    f"R{i} − h{i} = {radius!r} [in]: must be > R1 − h1 = {L1!r} [in] (R1, h1 are "
+                    f"the inner surfaces', R{i}, h{i} an outer surface's, the flatter one: its "
+                    "effective radius is the larger); check which surface is which.")
+        return cls(W=W, L1=L1, L2=L2, L3=L3, d1=d1_nominal * L1 / R1, d2=d2_nominal * L2 / R2,
+                   d3=d3_nominal * L3 / R3, mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y)
 
     # ---- derived quantities (the series model) ----
 

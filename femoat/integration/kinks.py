@@ -92,6 +92,21 @@ def _bearing_kink(e, hh, model, state, work, fine):
     return hi
 
 
+@njit(cache=True)
+def _carried_turn(kind, p, s, v0x, v0y, a0x, a0y, v1x, v1y, a1x, a1y, z1x, z1y):
+    """(r0, ṙ0, r1, ṙ1, z moved) of r = z·v over a step that carried the bearing's friction
+    state from the committed ``s`` to (z1x, z1y): ṙ = g(z, v)·v + z·a (its own compiled
+    function: called only for a carried bearing, compiled once, not inside the loop)."""
+    z0x, z0y = bearing_plan_rate_state(kind, s)
+    g0 = bearing_plan_rate(kind, p, z0x, z0y, v0x, v0y)
+    g1 = bearing_plan_rate(kind, p, z1x, z1y, v1x, v1y)
+    r0 = z0x * v0x + z0y * v0y
+    dr0 = (z0x * a0x + z0y * a0y) + (g0[0] * v0x + g0[1] * v0y)
+    r1 = z1x * v1x + z1y * v1y
+    dr1 = (z1x * a1x + z1y * a1y) + (g1[0] * v1x + g1[1] * v1y)
+    return r0, dr0, r1, dr1, z1x != z0x or z1y != z0y
+
+
 @njit(cache=True, inline="always")
 def _bearing_turn(e, hh, model, state, work, fine):
     """Fraction θ just past the point where the plan bearing ``e`` turns back (its velocity along
@@ -112,16 +127,9 @@ def _bearing_turn(e, hh, model, state, work, fine):
     dr0 = zx * state.a[ix] + zy * state.a[iy]
     moved = False
     if work.b_rate[e]:
-        p = model.b_P[e]
-        z0x, z0y = bearing_plan_rate_state(kind, state.b_S[e])
-        z1x, z1y = work.bz[e, 0], work.bz[e, 1]
-        g0 = bearing_plan_rate(kind, p, z0x, z0y, v0x, v0y)
-        g1 = bearing_plan_rate(kind, p, z1x, z1y, v1x, v1y)
-        r0 = z0x * v0x + z0y * v0y
-        dr0 = (z0x * state.a[ix] + z0y * state.a[iy]) + (g0[0] * v0x + g0[1] * v0y)
-        r1 = z1x * v1x + z1y * v1y
-        dr1 = (z1x * work.a[ix] + z1y * work.a[iy]) + (g1[0] * v1x + g1[1] * v1y)
-        moved = z1x != z0x or z1y != z0y
+        r0, dr0, r1, dr1, moved = _carried_turn(
+            kind, model.b_P[e], state.b_S[e], v0x, v0y, state.a[ix], state.a[iy], v1x, v1y,
+            work.a[ix], work.a[iy], work.bz[e, 0], work.bz[e, 1])
     else:
         r1 = zx * v1x + zy * v1y
         dr1 = zx * work.a[ix] + zy * work.a[iy]

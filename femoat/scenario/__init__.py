@@ -17,6 +17,8 @@ Relative paths are relative to the scenario file. The tables and their keys (:da
     [kip/in], Fy [kip], b [-]; IMKBilinear K0, My, alpha_s, theta_p [in], theta_pc [in], ...
 ``[building.isolator]`` the single friction pendulum: R [in], mu [-] (mu_slow when mu_fast is
     given), u_y [in], mu_fast [-], a [s/in], v_reg [in/s]; W [kip] is the building's weight.
+    ``type`` = "tfp" or "lrb": that bearing kind's fields (femoat.bearings); a triple pendulum
+    may be given by its geometry instead (R1-R3, h1-h3, d1_nominal-d3_nominal [in]).
 ``[walls]`` the moat walls and their contact (:mod:`.walls`)
     preset: a wall of the paper's Table 3, "concrete" | "steel"; damping: its C_imp,
     "published" | "consistent"; law: a contact law letter, E | V | J | H | M; gap [in];

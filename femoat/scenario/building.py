@@ -18,6 +18,7 @@ base mat). The y stories may differ: ``story_model_y`` and ``[building.story_y]`
 """
 
 import dataclasses
+import math
 
 from femoat.bearings import registry as bearing_registry
 from femoat.scenario.reading import (check_keys, field_default, field_defaults, flag, naming,
@@ -83,7 +84,8 @@ def _story(model, story, where="[building.story]"):
 def _isolator(iso, weight):
     """The isolator of ``[building.isolator]``: the bearing kind its ``type`` names (a key of
     :mod:`femoat.bearings.registry`, default "fp"), on one axis, its parameters from the other
-    keys; a bearing with a weight W [kip] carries ``weight`` unless the table gives W."""
+    keys (or, for a kind with ``GEOMETRY_KEYS``, from its geometry: :func:`_geometry_isolator`);
+    a bearing with a weight W [kip] carries ``weight`` unless the table gives W."""
     where = "[building.isolator]"
     iso = dict(iso)
     key = text(iso, "type", ISOLATOR_TYPE, where)
@@ -94,7 +96,38 @@ def _isolator(iso, weight):
     cls = kind.AXIS_CLASS
     if "W" in {f.name for f in dataclasses.fields(cls)}:
         iso.setdefault("W", weight)
+    if set(iso) & set(getattr(kind, "GEOMETRY_KEYS", ())):
+        return _geometry_isolator(iso, kind, where)
     return numeric_table(iso, cls, where)
+
+
+def _geometry_isolator(iso, kind, where):
+    """The bearing of an isolator table that gives its kind's geometry, ``kind.GEOMETRY_KEYS``
+    (the triple friction pendulum's radii R1..R3, pivot heights h1..h3 and nominal capacities
+    d1_nominal..d3_nominal [in]), in place of the fields it determines,
+    ``kind.GEOMETRY_REPLACES`` (L1..L3, d1..d3): ``AXIS_CLASS.from_geometry`` of all the
+    geometry keys (they have no defaults) and the class's other fields."""
+    cls, geometry, replaced = kind.AXIS_CLASS, kind.GEOMETRY_KEYS, kind.GEOMETRY_REPLACES
+    given = [k for k in geometry if k in iso]
+    mixed = [k for k in replaced if k in iso]
+    if mixed:
+        raise ValueError(
+            f"{where} {', '.join(mixed)} with {', '.join(given)}: give the bearing either by "
+            f"{', '.join(replaced)} or by its geometry, which determines them, not both: remove "
+            f"{', '.join(mixed)} (or the geometry keys).")
+    missing = [k for k in geometry if k not in iso]
+    if missing:
+        raise ValueError(
+            f"{where} {', '.join(missing)}: missing; a bearing given by its geometry needs all of "
+            f"{', '.join(geometry)} (they have no defaults), or give {', '.join(replaced)} "
+            "instead.")
+    check_keys(iso, set(geometry) | ({f.name for f in dataclasses.fields(cls)} - set(replaced)),
+               where)
+    for k, value in iso.items():  # ranges (and whether inf is allowed) are the class's to check
+        if not isinstance(value, (int, float)) or isinstance(value, bool) or math.isnan(value):
+            raise ValueError(f"{where} {k} = {value!r}: expected a number.")
+    with naming(where):
+        return cls.from_geometry(**iso)
 
 
 def building_from_dict(d):

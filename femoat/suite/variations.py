@@ -29,7 +29,9 @@ def allowed_keys():
                                for f in dataclasses.fields(m)} | {"k0"}
     known["building.story_y"] = known["building.story"]
     known["building.isolator"] = {"type"} | {  # every bearing kind's parameters
-        f.name for cls in registry.axis_classes() for f in dataclasses.fields(cls)}
+        f.name for cls in registry.axis_classes() for f in dataclasses.fields(cls)} | {
+        key for i in range(len(registry.kinds()))  # and the geometry a kind may take instead
+        for key in getattr(registry.module(i), "GEOMETRY_KEYS", ())}
     return known
 
 
