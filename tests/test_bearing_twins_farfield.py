@@ -53,19 +53,18 @@ extrapolated to zero step, and femoat's default is 1.38e-3 off converged femoat 
 the step, the plan trial's 4-piece path, benchmarks/README.md issue 28).
 """
 
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from conftest import opensees_or_skip
+from test_bearing_runs import _along_x, _model_on
 from femoat.bearings import registry
 from femoat.bearings.lead_rubber import LeadRubberBearing
 from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
 from femoat.ground_motions import GroundMotion, RecordPair, fema_p695_pair
 from femoat.integration import Integrator
-from femoat.paper import paper_model
-from femoat.plan import PlanBuilding, PlanModel, PlanWall
+from femoat.plan import PlanBuilding, PlanModel
 from femoat.run import run
 
 BEARINGS = {"lrb": LeadRubberBearing(), "tfp": TripleFrictionPendulum()}
@@ -95,21 +94,6 @@ def _pair(record_id):
     pair = fema_p695_pair("farfield", record_id, scale=ANCHOR, normalized=True)
     x, y = (_first(m.time_scaled(0.5), CUT) for m in (pair.x, pair.y))
     return RecordPair(x, y, angle=pair.angle, scale=pair.scale, name=pair.name)
-
-
-def _model_on(bearing, law="E"):
-    """The paper building in the paper's concrete moat on ``bearing``."""
-    fp = paper_model("concrete", law)
-    return replace(fp, building=replace(fp.building, isolator=bearing))
-
-
-def _along_x(model):
-    """The plan model whose restriction to x is the 1D ``model`` (its walls on ±x)."""
-    walls = tuple(PlanWall(w.law, w.wall, w.gap, "+x" if w.side > 0 else "-x")
-                  for w in model.walls)
-    plan_model = PlanModel(building=PlanBuilding.from_building(model.building), walls=walls)
-    assert plan_model.along("x") == model
-    return plan_model
 
 
 def _plan_model(key):
