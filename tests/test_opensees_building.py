@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 from conftest import opensees_missing
 
-from femoat.contact import make_law
 from femoat.ground_motions import GroundMotion
 from femoat.integration import Integrator
 from femoat.opensees import opensees_commands
@@ -22,7 +21,6 @@ from femoat.run import run
 from femoat.structure.building import Building
 from femoat.structure.materials import Elastic, FrictionPendulum, IMKBilinear
 from femoat.structure.pounding import PoundingModel
-from femoat.walls import wall_preset
 
 # the suite's one OpenSees probe (conftest): its reason names the packages and the apt-get command
 needs_opensees = pytest.mark.skipif(opensees_missing() is not None,
@@ -119,8 +117,6 @@ def test_cli_prints_both_summaries(tmp_path, capsys):
 
 
 def test_export_refuses_what_has_no_opensees_twin():
-    preset = wall_preset("concrete")
-    law = make_law("H", preset.contact)
     rate = Building(isolator=FrictionPendulum(mu=0.05, mu_fast=0.1, a=1.0))
     with pytest.raises(ValueError, match="mu_fast"):
         opensees_commands(PoundingModel(rate), paper_motion(quick=True))
