@@ -12,7 +12,10 @@ the plan run (ark5, the default of a plan run on a friction pendulum; and Newmar
 default before it) against the 1D model along x under the x component (its default dp5, and
 Newmark). The worst peak errors are against the plan run converged (Newmark, rtol 1e-8).
 ``--mce``: the full pairs at the MCE, time x 0.5, at 0 and 30 degrees (issue 26's targets).
-``--isolator lrb``: the building on the default lead-rubber bearing instead.
+``--isolator lrb`` or ``tfp``: the building on the default lead-rubber bearing or triple friction
+pendulum instead (both on ark5, their rate forms); the last two columns then give the single
+friction pendulum's plan run of the same pair (the default) and the ratio of the two CPUs (issue
+28's target for the triple pendulum: at most 2).
 """
 
 import argparse
@@ -79,22 +82,29 @@ def main(argv=None):
     ap.add_argument("--mce", action="store_true",
                     help="full pairs at the MCE, time x 0.5, at --angles (issue 26's targets)")
     ap.add_argument("--angles", type=float, nargs="+", default=[0.0, 30.0])
-    ap.add_argument("--isolator", choices=("fp", "lrb"), default="fp",
-                    help="the building's bearing: the paper's friction pendulum or the default "
-                         "lead-rubber bearing (both on their rate form: ark5)")
+    ap.add_argument("--isolator", choices=("fp", "lrb", "tfp"), default="fp",
+                    help="the building's bearing: the paper's friction pendulum, the default "
+                         "lead-rubber bearing or triple friction pendulum (each on its rate "
+                         "form: ark5)")
     args = ap.parse_args(argv)
     building = PlanBuilding()
     if args.isolator == "lrb":
         from femoat.bearings.lead_rubber import LeadRubberBearing
 
         building = PlanBuilding(isolator=LeadRubberBearing())
+    elif args.isolator == "tfp":
+        from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+
+        building = PlanBuilding(isolator=TripleFrictionPendulum())
     model = PlanModel(building, walls=rectangular_moat("concrete", "H", gap=4.0))
+    single = PlanModel(walls=rectangular_moat("concrete", "H", gap=4.0))
     along = model.along("x")
     newmark = Integrator(method="newmark")
     print(f"{'pair':>7s} {'plan ms':>8s} {'steps':>7s} {'1D dp5 ms':>10s} {'steps':>7s} "
           f"{'1D nm ms':>9s} {'steps':>7s} {'plan/1D dp5':>11s} {'plan/1D nm':>10s} "
           f"{'impacts':>8s} {'worst peak err':>15s} {'no-hist ms':>10s} {'run() ms':>9s} "
-          f"{'no-hist run() ms':>16s} {'plan nm ms':>10s} {'nm err':>9s}")
+          f"{'no-hist run() ms':>16s} {'plan nm ms':>10s} {'nm err':>9s}"
+          + (f" {'fp plan ms':>10s} {'/fp':>5s}" if args.isolator != "fp" else ""))
     for label, pair in _pairs(args):
         duration = pair.duration + 1.0
         run(model, pair, duration=duration)  # compile / load
@@ -113,7 +123,11 @@ def main(argv=None):
               f"{r_dp5.peaks['steps']:7d} {t_nm * 1e3:9.1f} {r_nm.peaks['steps']:7d} "
               f"{t_plan / t_dp5:11.2f} {t_plan / t_nm:10.2f} {hits:8d} {err:15.2e} "
               f"{t_bare * 1e3:10.1f} {w_plan * 1e3:9.1f} {w_bare * 1e3:16.1f} "
-              f"{t_pnm * 1e3:10.1f} {err_nm:9.2e}", flush=True)
+              f"{t_pnm * 1e3:10.1f} {err_nm:9.2e}", end="")
+        if args.isolator != "fp":
+            t_fp, _, _ = _best(single, pair, None, duration, args.repeat)
+            print(f" {t_fp * 1e3:10.1f} {t_plan / t_fp:5.2f}", end="")
+        print(flush=True)
 
 
 if __name__ == "__main__":

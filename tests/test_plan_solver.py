@@ -30,7 +30,7 @@ def ff1(seconds, factor):
 
 
 @pytest.mark.parametrize("method,isolator", [("newmark", "bearing"), ("dp5", "elastic"),
-                                             ("ark5", "bearing")])
+                                             ("ark5", "bearing"), ("ark5", "tfp")])
 def test_with_no_y_excitation_it_is_the_1d_run_bit_for_bit(method, isolator):
     # The plan model under (a_x, 0) is the 1D model along x (model.along("x")): nothing loads
     # y (the bearing's z stays on the x axis: its radial return is the 1D bearing's clamp),
@@ -41,8 +41,17 @@ def test_with_no_y_excitation_it_is_the_1d_run_bit_for_bit(method, isolator):
     # ark5, a plan run's default: a sliding bearing's friction rate (v − (z·v)·z)/u_y is
     # exactly 0 with z = (±1, 0) and v = (v_x, 0), so every step is the dp5 step with z held
     # (methods/ark5.py): the plan run is the 1D *default* run (dp5) to the bit.
+    # The triple friction pendulum on ark5: its carried z_i = (±1, 0) have the rate
+    # (ḋ_i − (z_i·ḋ_i)·z_i)/u_y,i = 0 with ḋ_i along x, and a carried z equal to the radial
+    # return's is the free element's arithmetic (triple_friction_pendulum._element): the same
+    # series solves as the 1D bearing's.
     x, _ = ff1(8.0, 3.0)
-    b = PlanBuilding() if isolator == "bearing" else PlanBuilding(isolator=Elastic(k=2.0))
+    if isolator == "tfp":
+        from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+
+        b = PlanBuilding(isolator=TripleFrictionPendulum())
+    else:
+        b = PlanBuilding() if isolator == "bearing" else PlanBuilding(isolator=Elastic(k=2.0))
     plan = PlanModel(b, rectangular_moat("concrete", "H", gap=2.0))
     integ = Integrator(method=method)
     p = run(plan, RecordPair(x, zero_like(x)), integ, duration=8.5)

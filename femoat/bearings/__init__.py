@@ -22,7 +22,26 @@ is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
     path of no duration; ``plan_commit(...)`` with the same path arguments, ``plan_energy(p, s)``;
   - ``plan_branch(p, s, ux, uy) -> int``: the branch of a trial point (the solver lands a step
     where it changes) and ``plan_turn_direction(s) -> (dx, dy)``: the committed direction along
-    which a velocity turning negative unloads the bearing ((0, 0): none).
+    which a velocity turning negative unloads the bearing ((0, 0): none);
+
+optionally a **rate form** for the coupled-friction step (:mod:`femoat.integration.methods.ark5`;
+all or none, :data:`femoat.bearings.registry.RATE_KERNELS`): ``N_RATE_PLAN``, the width of its
+friction state z (a vector the step carries while the kind says so), and
+
+  - ``plan_rate_active(p, s, vx, vy) -> bool``: whether a step from the committed state at the
+    velocity (vx, vy) carries z (the pendulum: it slides and keeps loading);
+  - ``plan_rate_state(p, s, z) -> n``: the committed z into ``z``, its width n;
+  - ``plan_rate(p, s, ux, uy, vx, vy, z, g, J)``: the rate ż = g(z; u, v) [1/s] into ``g`` and
+    ∂g/∂z into ``J`` (the step solves each stage's z implicitly with it); z's first two entries
+    are the committed direction of sliding (the kink search's test of a straight step);
+  - ``plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J) -> (r, ṙ)``: the loading measure
+    whose crossing of zero downwards unloads the bearing (the pendulum: z·v) and its time rate
+    at the acceleration (ax, ay) (the turn search lands a step where it crosses, z moving);
+  - ``plan_rate_branch(p, s, ux, uy, z) -> int``: the branch at a trial point of a step that
+    carries z, z given there (the kink search follows z along the step; the pendulum:
+    ``plan_branch``);
+  - ``plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c)``: force and tangents at a stage whose z
+    is given; ``plan_rate_commit(p, s, ux, uy, vx, vy, z)``: commit the step's end.
 
 and, for its OpenSees twins (:mod:`femoat.opensees`), ``opensees_plan_element(bearing, ele_tag,
 i_node, j_node, mat_tag) -> (commands, next_mat_tag)`` (the 3D element between two nodes, shear in

@@ -22,6 +22,8 @@ from femoat.bearings.friction_pendulum import (
     plan_rate as _plan_rate_0,
     plan_rate_force as _plan_rate_force_0,
     plan_rate_commit as _plan_rate_commit_0,
+    plan_rate_turn as _plan_rate_turn_0,
+    plan_rate_branch as _plan_rate_branch_0,
 )
 from femoat.bearings.lead_rubber import (
     axis_trial as _axis_trial_1,
@@ -37,6 +39,8 @@ from femoat.bearings.lead_rubber import (
     plan_rate as _plan_rate_1,
     plan_rate_force as _plan_rate_force_1,
     plan_rate_commit as _plan_rate_commit_1,
+    plan_rate_turn as _plan_rate_turn_1,
+    plan_rate_branch as _plan_rate_branch_1,
 )
 from femoat.bearings.triple_friction_pendulum import (
     axis_trial as _axis_trial_2,
@@ -47,6 +51,13 @@ from femoat.bearings.triple_friction_pendulum import (
     plan_energy as _plan_energy_2,
     plan_branch as _plan_branch_2,
     plan_turn_direction as _plan_turn_direction_2,
+    plan_rate_active as _plan_rate_active_2,
+    plan_rate_state as _plan_rate_state_2,
+    plan_rate as _plan_rate_2,
+    plan_rate_force as _plan_rate_force_2,
+    plan_rate_commit as _plan_rate_commit_2,
+    plan_rate_turn as _plan_rate_turn_2,
+    plan_rate_branch as _plan_rate_branch_2,
 )
 from femoat.compilation.jit import njit
 
@@ -169,46 +180,84 @@ def bearing_plan_rate_active(kind, p, s, vx, vy):
         return _plan_rate_active_0(p, s, vx, vy)
     if kind == 1:
         return _plan_rate_active_1(p, s, vx, vy)
+    if kind == 2:
+        return _plan_rate_active_2(p, s, vx, vy)
     return False
 
 
 @njit(cache=True)
-def bearing_plan_rate_state(kind, s):
+def bearing_plan_rate_state(kind, p, s, z):
     """:func:`plan_rate_state` of bearing kind ``kind``."""
     if kind == 0:
-        return _plan_rate_state_0(s)
+        return _plan_rate_state_0(p, s, z)
     if kind == 1:
-        return _plan_rate_state_1(s)
+        return _plan_rate_state_1(p, s, z)
+    if kind == 2:
+        return _plan_rate_state_2(p, s, z)
+    return 0
+
+
+@njit(cache=True)
+def bearing_plan_rate(kind, p, s, ux, uy, vx, vy, z, g, J):
+    """:func:`plan_rate` of bearing kind ``kind``."""
+    if kind == 0:
+        _plan_rate_0(p, s, ux, uy, vx, vy, z, g, J)
+        return
+    if kind == 1:
+        _plan_rate_1(p, s, ux, uy, vx, vy, z, g, J)
+        return
+    if kind == 2:
+        _plan_rate_2(p, s, ux, uy, vx, vy, z, g, J)
+        return
+
+
+@njit(cache=True)
+def bearing_plan_rate_force(kind, p, s, ux, uy, vx, vy, z, f, k, c):
+    """:func:`plan_rate_force` of bearing kind ``kind``."""
+    if kind == 0:
+        _plan_rate_force_0(p, s, ux, uy, vx, vy, z, f, k, c)
+        return
+    if kind == 1:
+        _plan_rate_force_1(p, s, ux, uy, vx, vy, z, f, k, c)
+        return
+    if kind == 2:
+        _plan_rate_force_2(p, s, ux, uy, vx, vy, z, f, k, c)
+        return
+
+
+@njit(cache=True)
+def bearing_plan_rate_commit(kind, p, s, ux, uy, vx, vy, z):
+    """:func:`plan_rate_commit` of bearing kind ``kind``."""
+    if kind == 0:
+        _plan_rate_commit_0(p, s, ux, uy, vx, vy, z)
+        return
+    if kind == 1:
+        _plan_rate_commit_1(p, s, ux, uy, vx, vy, z)
+        return
+    if kind == 2:
+        _plan_rate_commit_2(p, s, ux, uy, vx, vy, z)
+        return
+
+
+@njit(cache=True)
+def bearing_plan_rate_turn(kind, p, s, ux, uy, vx, vy, ax, ay, z, g, J):
+    """:func:`plan_rate_turn` of bearing kind ``kind``."""
+    if kind == 0:
+        return _plan_rate_turn_0(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
+    if kind == 1:
+        return _plan_rate_turn_1(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
+    if kind == 2:
+        return _plan_rate_turn_2(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
     return (np.nan, np.nan)
 
 
 @njit(cache=True)
-def bearing_plan_rate(kind, p, zx, zy, vx, vy):
-    """:func:`plan_rate` of bearing kind ``kind``."""
+def bearing_plan_rate_branch(kind, p, s, ux, uy, z):
+    """:func:`plan_rate_branch` of bearing kind ``kind``."""
     if kind == 0:
-        return _plan_rate_0(p, zx, zy, vx, vy)
+        return _plan_rate_branch_0(p, s, ux, uy, z)
     if kind == 1:
-        return _plan_rate_1(p, zx, zy, vx, vy)
-    return (np.nan, np.nan, np.nan, np.nan, np.nan, np.nan)
-
-
-@njit(cache=True)
-def bearing_plan_rate_force(kind, p, s, ux, uy, vx, vy, zx, zy, f, k, c):
-    """:func:`plan_rate_force` of bearing kind ``kind``."""
-    if kind == 0:
-        _plan_rate_force_0(p, s, ux, uy, vx, vy, zx, zy, f, k, c)
-        return
-    if kind == 1:
-        _plan_rate_force_1(p, s, ux, uy, vx, vy, zx, zy, f, k, c)
-        return
-
-
-@njit(cache=True)
-def bearing_plan_rate_commit(kind, p, s, ux, uy, vx, vy, zx, zy):
-    """:func:`plan_rate_commit` of bearing kind ``kind``."""
-    if kind == 0:
-        _plan_rate_commit_0(p, s, ux, uy, vx, vy, zx, zy)
-        return
-    if kind == 1:
-        _plan_rate_commit_1(p, s, ux, uy, vx, vy, zx, zy)
-        return
+        return _plan_rate_branch_1(p, s, ux, uy, z)
+    if kind == 2:
+        return _plan_rate_branch_2(p, s, ux, uy, z)
+    return -1

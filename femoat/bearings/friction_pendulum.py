@@ -333,14 +333,20 @@ def plan_rate_active(p, s, vx, vy):
     return zx * zx + zy * zy >= 1.0 - 1e-9 and zx * vx + zy * vy > 0.0
 
 
-@njit(cache=True)
-def plan_rate_state(s):
-    """The committed rate-form variable: z (z_x, z_y) [-]."""
-    return s[_ZCX], s[_ZCY]
+N_RATE_PLAN = 2
+"""The rate form's state: z (z_x, z_y) [-]."""
 
 
 @njit(cache=True)
-def plan_rate(p, zx, zy, vx, vy):
+def plan_rate_state(p, s, z):
+    """The committed rate-form variable z (z_x, z_y) [-] into ``z``; returns its width, 2."""
+    z[0] = s[_ZCX]
+    z[1] = s[_ZCY]
+    return N_RATE_PLAN
+
+
+@njit(cache=True)
+def rim_rate(p, zx, zy, vx, vy):
     """(g_x, g_y, ∂g_x/∂z_x, ∂g_x/∂z_y, ∂g_y/∂z_x, ∂g_y/∂z_y): the sliding rule's rate
     ż = g(z, v) = (v − (z·v)·z)/u_y [1/s] at z and the velocity (vx, vy) [in/s], and its
     Jacobian ∂g/∂z = −((z·v)·I + z·vᵀ)/u_y. On the rim the rule of :func:`_straight`; off it
@@ -353,6 +359,19 @@ def plan_rate(p, zx, zy, vx, vy):
 
 
 @njit(cache=True)
+def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
+    """The rate ż = g(z, v) of :func:`rim_rate` into ``g`` (2,) and its Jacobian into ``J``
+    (at least 2 × 2) at the velocity (vx, vy) [in/s] (the displacement does not enter)."""
+    r = rim_rate(p, z[0], z[1], vx, vy)
+    g[0] = r[0]
+    g[1] = r[1]
+    J[0, 0] = r[2]
+    J[0, 1] = r[3]
+    J[1, 0] = r[4]
+    J[1, 1] = r[5]
+
+
+@njit(cache=True)
 def _moved_back(p, s, ux, uy):
     """Whether the trial (ux, uy) [in] from the committed state is inside the disk: the bearing
     has moved back and unloads (sticks) there, whatever a carried z says."""
@@ -362,7 +381,22 @@ def _moved_back(p, s, ux, uy):
 
 
 @njit(cache=True)
-def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
+def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
+    """(r, ṙ): r = z·v, whose crossing of zero downwards unloads the bearing, and its rate
+    ṙ = g(z, v)·v + z·a at the acceleration (ax, ay) [in/s²] (``g``, ``J`` scratch)."""
+    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    return (z[0] * vx + z[1] * vy), (z[0] * ax + z[1] * ay) + (g[0] * vx + g[1] * vy)
+
+
+@njit(cache=True)
+def plan_rate_branch(p, s, ux, uy, z):
+    """The branch at the trial (ux, uy) [in] of a step that carries z: :func:`plan_branch` (z's
+    value does not change it: while z is carried the bearing only unloads, at a turn)."""
+    return plan_branch(p, s, ux, uy)
+
+
+@njit(cache=True)
+def plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c):
     """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` [kip·s/in] (2, 2) in place at
     (ux, uy) [in], (vx, vy) [in/s] with the friction state z = (zx, zy) [-] given (a stage's):
     f = (W/R)·u + μ(v)·W·z (z a state: no friction stiffness). A trial that is back inside the
@@ -372,6 +406,7 @@ def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
     if _moved_back(p, s, ux, uy):
         plan_return_trial(p, s, ux, uy, vx, vy, f, k, c)
         return
+    zx, zy = z[0], z[1]
     w = p[_W]
     k_r = w / p[_R]
     mu, dmu_x, dmu_y = plan_friction_coefficient(p, vx, vy)
@@ -388,7 +423,7 @@ def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
 
 
 @njit(cache=True)
-def plan_rate_commit(p, s, ux, uy, vx, vy, zx, zy):
+def plan_rate_commit(p, s, ux, uy, vx, vy, z):
     """Commit the end (ux, uy), (vx, vy) of a step that carried z as a state, z = (zx, zy) its
     end value: put on the rim (the rate form leaves |z| − 1 at the step's truncation error; on
     the rim the branch and turn searches see a sliding bearing); a trial back inside the disk
@@ -396,6 +431,7 @@ def plan_rate_commit(p, s, ux, uy, vx, vy, zx, zy):
     if _moved_back(p, s, ux, uy):
         plan_return_commit(p, s, ux, uy, vx, vy)
         return
+    zx, zy = z[0], z[1]
     norm = np.sqrt(zx * zx + zy * zy)
     s[_UCX] = ux
     s[_UCY] = uy

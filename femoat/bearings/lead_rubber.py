@@ -611,14 +611,20 @@ def plan_rate_active(p, s, vx, vy):
     return zx * zx + zy * zy >= Z_CARRY * Z_CARRY and zx * vx + zy * vy > 0.0
 
 
-@njit(cache=True)
-def plan_rate_state(s):
-    """The committed rate-form variable: z (z_x, z_y) [-]."""
-    return s[_ZCX], s[_ZCY]
+N_RATE_PLAN = 2
+"""The rate form's state: z (z_x, z_y) [-]."""
 
 
 @njit(cache=True)
-def plan_rate(p, zx, zy, vx, vy):
+def plan_rate_state(p, s, z):
+    """The committed rate-form variable z (z_x, z_y) [-] into ``z``; returns its width, 2."""
+    z[0] = s[_ZCX]
+    z[1] = s[_ZCY]
+    return N_RATE_PLAN
+
+
+@njit(cache=True)
+def loading_rate(p, zx, zy, vx, vy):
     """(g_x, g_y, ∂g_x/∂z_x, ∂g_x/∂z_y, ∂g_y/∂z_x, ∂g_y/∂z_y): the loading rule's rate
     ż = g(z, v) = (A·v − (β + γ)·|z|^(η−2)·(z·v)·z)/u_y [1/s] at z and the velocity (vx, vy)
     [in/s], and its Jacobian (the path integration's :func:`_rates` with the velocity as the
@@ -629,11 +635,40 @@ def plan_rate(p, zx, zy, vx, vy):
 
 
 @njit(cache=True)
-def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
+def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
+    """The rate of :func:`loading_rate` into ``g`` (2,) and its Jacobian into ``J`` (at least
+    2 × 2) at the velocity (vx, vy) [in/s] (the displacement does not enter)."""
+    r = loading_rate(p, z[0], z[1], vx, vy)
+    g[0] = r[0]
+    g[1] = r[1]
+    J[0, 0] = r[2]
+    J[0, 1] = r[3]
+    J[1, 0] = r[4]
+    J[1, 1] = r[5]
+
+
+@njit(cache=True)
+def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
+    """(r, ṙ): r = z·v, whose crossing of zero downwards unloads the bearing, and its rate
+    ṙ = g(z, v)·v + z·a at the acceleration (ax, ay) [in/s²] (``g``, ``J`` scratch)."""
+    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    return (z[0] * vx + z[1] * vy), (z[0] * ax + z[1] * ay) + (g[0] * vx + g[1] * vy)
+
+
+@njit(cache=True)
+def plan_rate_branch(p, s, ux, uy, z):
+    """The branch at the trial (ux, uy) [in] of a step that carries z: :func:`plan_branch` (z's
+    value does not change it: while z is carried the bearing only unloads, at a turn)."""
+    return plan_branch(p, s, ux, uy)
+
+
+@njit(cache=True)
+def plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c):
     """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` (zero) (2, 2) in place at
     (ux, uy) [in] with the state z = (zx, zy) [-] given (a stage's): f = K_d·u + Q_d·z (z a
     state: the hysteretic term adds no stiffness)."""
     qd, kd = p[_QD], p[_KD]
+    zx, zy = z[0], z[1]
     f[0] = kd * ux + qd * zx
     f[1] = kd * uy + qd * zy
     k[0, 0] = kd
@@ -647,10 +682,11 @@ def plan_rate_force(p, s, ux, uy, vx, vy, zx, zy, f, k, c):
 
 
 @njit(cache=True)
-def plan_rate_commit(p, s, ux, uy, vx, vy, zx, zy):
+def plan_rate_commit(p, s, ux, uy, vx, vy, z):
     """Commit the end (ux, uy) of a step that carried z, z = (zx, zy) its end value, and z's
     direction as the turning direction whatever the tangents (every reversal of a carried z is
     then landed on: the loading rate must not run past one)."""
+    zx, zy = z[0], z[1]
     s[_UCX] = ux
     s[_UCY] = uy
     s[_ZCX] = zx

@@ -50,16 +50,27 @@ KERNELS = {
 
 RATE_KERNELS = {
     "bearing_plan_rate_active": ("plan_rate_active", "p, s, vx, vy", "False"),
-    "bearing_plan_rate_state": ("plan_rate_state", "s", "(np.nan, np.nan)"),
-    "bearing_plan_rate": ("plan_rate", "p, zx, zy, vx, vy",
-                          "(np.nan, np.nan, np.nan, np.nan, np.nan, np.nan)"),
-    "bearing_plan_rate_force": ("plan_rate_force", "p, s, ux, uy, vx, vy, zx, zy, f, k, c",
-                                None),
-    "bearing_plan_rate_commit": ("plan_rate_commit", "p, s, ux, uy, vx, vy, zx, zy", None),
+    "bearing_plan_rate_state": ("plan_rate_state", "p, s, z", "0"),
+    "bearing_plan_rate": ("plan_rate", "p, s, ux, uy, vx, vy, z, g, J", None),
+    "bearing_plan_rate_force": ("plan_rate_force", "p, s, ux, uy, vx, vy, z, f, k, c", None),
+    "bearing_plan_rate_commit": ("plan_rate_commit", "p, s, ux, uy, vx, vy, z", None),
+    "bearing_plan_rate_turn": ("plan_rate_turn", "p, s, ux, uy, vx, vy, ax, ay, z, g, J",
+                               "(np.nan, np.nan)"),
+    "bearing_plan_rate_branch": ("plan_rate_branch", "p, s, ux, uy, z", "-1"),
 }
 """The rate form a kind may declare (all five or none; :mod:`femoat.bearings`' docstring): its
 friction state as an ODE for the coupled-friction step (:mod:`femoat.integration.methods.ark5`).
-A kind without it answers ``plan_rate_active`` False (its plan trials follow the step's path)."""
+The state is a vector ``z`` of the kind's ``N_RATE_PLAN`` values (the arrays the loop passes are
+:func:`rate_width` long: a kind uses their first ``N_RATE_PLAN``); ``plan_rate_state`` writes the
+committed one and returns its width, ``plan_rate`` writes the rate ż = g(z; u, v) into ``g`` and
+∂g/∂z into ``J``; ``plan_rate_turn`` returns (r, ṙ), the loading measure whose crossing of zero
+downwards unloads the bearing (the pendulum's z·v) and its rate at the acceleration (ax, ay)
+(``g``, ``J`` scratch); ``plan_rate_branch`` the branch at a trial point of a step that carries
+z, with z given (the kink search follows z along the step). A kind without it answers ``plan_rate_active`` False (its plan trials follow the
+step's path)."""
+
+RATE_PYTHON_NAMES = ("N_RATE_PLAN",)
+"""The names a kind with a rate form provides besides its kernels: the width of its state."""
 
 PYTHON_NAMES = ("KEY", "N_PARAMS", "N_STATE_AXIS", "N_STATE_PLAN", "AXIS_CLASS", "PLAN_CLASS")
 """The names every kind provides on the Python side: its scenario key, its array widths and the
@@ -129,6 +140,13 @@ def widths():
             max(m.N_STATE_PLAN for m in mods))
 
 
+def rate_width():
+    """The widest rate-form state of every kind (the coupled-friction step's arrays), at least
+    2."""
+    mods = [importlib.import_module(name) for name in _kinds]
+    return max([2] + [m.N_RATE_PLAN for m in mods if hasattr(m, "N_RATE_PLAN")])
+
+
 def check_kind(name):
     """Import kind module ``name`` and check it provides the contract; returns the module."""
     mod = importlib.import_module(name)
@@ -142,6 +160,9 @@ def check_kind(name):
     if given and len(given) != len(rate):
         raise ValueError(f"bearing kind {name}: a rate form is all of {', '.join(rate)}; "
                          f"it has only {', '.join(given)}.")
+    if given and not all(hasattr(mod, k) for k in RATE_PYTHON_NAMES):
+        raise ValueError(f"bearing kind {name}: a rate form also gives "
+                         f"{', '.join(RATE_PYTHON_NAMES)} (the width of its state).")
     return mod
 
 

@@ -201,17 +201,29 @@ PIECES = 4
 
 
 @njit(cache=True, inline="always")
-def _element(p, i, s, o, dx, dy):
+def _element(p, i, s, o, dx, dy, carried, Z):
     """Series element ``i`` (0, 1, 2) at the trial (dx, dy) [in] from the internal state held in
     ``s`` from slot ``o`` on (0: the committed state; _PIECE: a path's piece, module docstring):
     force (fx, fy) [kip], symmetric tangent (kxx, kxy, kyy) [kip/in], incremental energy φ
-    [kip·in], hysteretic vector (zx, zy), sliding (0/1) and restrainer contact (0/1)."""
+    [kip·in], hysteretic vector (zx, zy), sliding (0/1) and restrainer contact (0/1).
+    ``carried``: the element slides with its hysteretic vector given, (Z[2i], Z[2i + 1]) (a
+    stage of the coupled-friction step, :func:`plan_rate`): a spring of stiffness W/L̄_i beside
+    the constant friction force μ_i·W·z, its energy φ = (W/L̄_i)·|d|²/2 + μ_i·W·z·d."""
     b = _E0 + 4 * i
     kr, q, uyi, gap, ks = p[b], p[b + 1], p[b + 2], p[b + 3], p[_K0]
     tx = s[o + 6 + 2 * i] + (dx - s[o + 2 * i]) / uyi
     ty = s[o + 7 + 2 * i] + (dy - s[o + 2 * i + 1]) / uyi
     t = np.sqrt(tx * tx + ty * ty)
-    if t > 1.0:  # sliding: z = t/|t|, ∂z/∂d = (I − z zᵀ)/(u_y,i·|t|)
+    if carried and not (t > 1.0 and tx / t == Z[2 * i] and ty / t == Z[2 * i + 1]):
+        # (a carried z equal to the radial return's, as on a straight step along z, is the
+        # free element's arithmetic: a plan run along one axis is the one-axis run to the bit)
+        zx, zy = Z[2 * i], Z[2 * i + 1]
+        kxx = kr
+        kxy = 0.0
+        kyy = kr
+        energy = q * (zx * dx + zy * dy)
+        sliding = 1
+    elif t > 1.0:  # sliding: z = t/|t|, ∂z/∂d = (I − z zᵀ)/(u_y,i·|t|)
         zx, zy = tx / t, ty / t
         g = q / (uyi * t)
         kxx = kr + g * (1.0 - zx * zx)
@@ -249,7 +261,7 @@ def _element(p, i, s, o, dx, dy):
 def _committed(p, i, s, o, dux, duy):
     """Series element ``i``'s compliance (cxx, cxy, cyy) [in/kip] for going on from the state
     at slot ``o`` of ``s`` as it was (sliding on along its z if it slides and the bearing moves
-    on along z, sticking otherwise): the solve's predictor."""
+    on along z, sticking otherwise): the solve's predictor (a carried element's too)."""
     b = _E0 + 4 * i
     kr, q, uyi, gap, ks = p[b], p[b + 1], p[b + 2], p[b + 3], p[_K0]
     dx, dy, zx, zy = s[o + 2 * i], s[o + 2 * i + 1], s[o + 6 + 2 * i], s[o + 7 + 2 * i]
@@ -287,13 +299,16 @@ def series_solve(p, s, ux, uy):
     z_3x, z_3y, iterations, branch): the force [kip], the consistent tangent [kip/in], the
     internal displacements [in] and hysteretic vectors, the Newton iterations, and the branch
     code Σ_i (sliding_i·2^i + contact_i·2^(3+i)). NaN force and tangent if Newton failed."""
-    return _series(p, s, 0, ux, uy)
+    return _series(p, s, 0, ux, uy, 0, s)
 
 
 @njit(cache=True)
-def _series(p, s, o, ux, uy):
+def _series(p, s, o, ux, uy, carry, Z):
     """:func:`series_solve` from the internal state held in ``s`` from slot ``o`` on (0: the
-    committed state, _PIECE: the end of a path's previous piece)."""
+    committed state, _PIECE: the end of a path's previous piece); the elements whose bit is set
+    in ``carry`` (bit i: element i) slide with their hysteretic vectors given in ``Z`` (6,)
+    (:func:`_element`; ``Z`` is not read when ``carry`` is 0)."""
+    cr1, cr2, cr3 = carry & 1, (carry >> 1) & 1, (carry >> 2) & 1
     # predictor: each element goes on as it was (sliding on along z, sticking), the increment
     # split by those compliances
     dux, duy = ux - s[o] - s[o + 2] - s[o + 4], uy - s[o + 1] - s[o + 3] - s[o + 5]
@@ -305,9 +320,9 @@ def _series(p, s, o, ux, uy):
     d1x, d1y = s[o] + p1 * gx + q1 * gy, s[o + 1] + q1 * gx + r1 * gy
     d2x, d2y = s[o + 2] + p2 * gx + q2 * gy, s[o + 3] + q2 * gx + r2 * gy
     d3x, d3y = ux - d1x - d2x, uy - d1y - d2y
-    f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = _element(p, 0, s, o, d1x, d1y)
-    f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = _element(p, 1, s, o, d2x, d2y)
-    f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = _element(p, 2, s, o, d3x, d3y)
+    f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = _element(p, 0, s, o, d1x, d1y, cr1, Z)
+    f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = _element(p, 1, s, o, d2x, d2y, cr2, Z)
+    f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = _element(p, 2, s, o, d3x, d3y, cr3, Z)
     energy = e1 + e2 + e3
     tight = TOLERANCE * (np.sqrt(ux * ux + uy * uy) + p[_SCALE])
     size = np.inf
@@ -335,9 +350,9 @@ def _series(p, s, o, ux, uy):
             n1x, n1y = d1x + alpha * s1x, d1y + alpha * s1y
             n2x, n2y = d2x + alpha * s2x, d2y + alpha * s2y
             n3x, n3y = ux - n1x - n2x, uy - n1y - n2y
-            g1 = _element(p, 0, s, o, n1x, n1y)
-            g2 = _element(p, 1, s, o, n2x, n2y)
-            g3 = _element(p, 2, s, o, n3x, n3y)
+            g1 = _element(p, 0, s, o, n1x, n1y, cr1, Z)
+            g2 = _element(p, 1, s, o, n2x, n2y, cr2, Z)
+            g3 = _element(p, 2, s, o, n3x, n3y, cr3, Z)
             trial = g1[5] + g2[5] + g3[5]
             if trial <= energy + 1e-4 * alpha * slope + 1e-15 * abs(energy):  # (rounding of Φ)
                 break
@@ -379,14 +394,14 @@ def _path(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, pieces):
     for j in range(0, 12, 2):
         cross += abs(dx * s[j + 1] - dy * s[j])
     if tau <= 0.0 or cross == 0.0 or pieces <= 1:
-        return _series(p, s, 0, ux, uy)
+        return _series(p, s, 0, ux, uy, 0, s)
     for j in range(12):
         s[_PIECE + j] = s[j]
     for n in range(1, pieces):
         th = n / pieces
         _store(s, _PIECE, _series(p, s, _PIECE, _hermite(th, tau, u0x, v0x, ux, vx),
-                                  _hermite(th, tau, u0y, v0y, uy, vy)))
-    return _series(p, s, _PIECE, ux, uy)
+                                  _hermite(th, tau, u0y, v0y, uy, vy), 0, s))
+    return _series(p, s, _PIECE, ux, uy, 0, s)
 
 
 @njit(cache=True)
@@ -450,6 +465,268 @@ def plan_turn_direction(s):
         if zx * zx + zy * zy >= 1.0 - 1e-9:
             return zx, zy
     return 0.0, 0.0
+
+
+# ---- in plan, the rate form (the coupled-friction step, femoat.integration.methods.ark5) -------
+
+N_RATE_PLAN = 6
+"""The rate form's state: the three elements' hysteretic vectors (z_1x, z_1y, z_2x, z_2y, z_3x,
+z_3y) [-] (the inner element's first: its direction is the bearing's turning direction)."""
+
+_CARRY = _PIECE
+"""Scratch slot: the bit mask of the elements a step carries (bit i: element i), written by
+:func:`plan_rate_active` at the step's start (no path is walked while a step carries them)."""
+
+
+@njit(cache=True, inline="always")
+def _on_rim(s, i):
+    zx, zy = s[6 + 2 * i], s[7 + 2 * i]
+    return zx * zx + zy * zy >= 1.0 - 1e-9
+
+
+@njit(cache=True)
+def plan_rate_active(p, s, vx, vy):
+    """True when the inner element (element 1, the first to slide) slides at the committed
+    state and the velocity (vx, vy) [in/s] keeps loading it (z_1·ḋ_1 > 0, ḋ_1 its own
+    displacement rate in the series, :func:`_series_rate`): over a step from here the sliding
+    elements' hysteretic vectors are states with the rate :func:`plan_rate`. Marks which
+    elements the step carries in the scratch slot ``_CARRY``: element 1 and each other element
+    that slides and is loaded (z_i·ḋ_i > 0); the others stick, their z the radial return from
+    the committed state (exact while they stick; where one starts to slide the kink search
+    lands the step)."""
+    if not _on_rim(s, 0):
+        return False
+    carry = 1
+    for i in range(1, 3):
+        if _on_rim(s, i):
+            carry |= 1 << i
+    z = s[6:12]
+    ux, uy = s[0] + s[2] + s[4], s[1] + s[3] + s[5]
+    for _ in range(3):
+        r = _series(p, s, 0, ux, uy, 0, s)
+        kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+        fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
+        keep = 0
+        for i in range(3):
+            if (carry >> i) & 1:
+                ci = comp[i]
+                ddx, ddy = ci[0] * fx + ci[1] * fy, ci[1] * fx + ci[2] * fy
+                if z[2 * i] * ddx + z[2 * i + 1] * ddy > 0.0:
+                    keep |= 1 << i
+        if keep == carry:
+            break
+        carry = keep
+    if not carry & 1:
+        return False
+    s[_CARRY] = float(carry)
+    return True
+
+
+@njit(cache=True)
+def plan_rate_state(p, s, z):
+    """The committed hysteretic vectors (z_1, z_2, z_3) [-] into ``z``; returns 6."""
+    for j in range(N_RATE_PLAN):
+        z[j] = s[6 + j]
+    return N_RATE_PLAN
+
+
+@njit(cache=True)
+def _carried_solve(p, s, ux, uy, z):
+    """(the :func:`series_solve` result at (ux, uy) [in] with the carried elements' z given in
+    ``z``, the carried mask): an element whose trial from the committed state is back inside
+    its disk (the stage moved back: it unloads) is released to its radial return, as the one-axis
+    element does (along a line: the one-axis force, whatever the signs of a tableau's
+    coefficients)."""
+    carry = int(s[_CARRY])
+    r = _series(p, s, 0, ux, uy, carry, z)
+    for _ in range(3):
+        back = 0
+        for i in range(3):
+            if (carry >> i) & 1:
+                uyi = p[_E0 + 4 * i + 2]
+                tx = s[6 + 2 * i] + (r[5 + 2 * i] - s[2 * i]) / uyi
+                ty = s[7 + 2 * i] + (r[6 + 2 * i] - s[2 * i + 1]) / uyi
+                if tx * tx + ty * ty <= 1.0:
+                    back |= 1 << i
+        if back == 0:
+            break
+        carry &= ~back
+        r = _series(p, s, 0, ux, uy, carry, z)
+    return r, carry
+
+
+@njit(cache=True, inline="always")
+def _rate_compliance(p, i, s, r, carry, z):
+    """Element ``i``'s compliance (cxx, cxy, cyy) [in/kip] in the rate of the series state: the
+    inverse of ∂f_i/∂d_i at its displacement in the series result ``r``: W/L̄_i·I plus its
+    restrainer's tangent, plus, for a carried element (its z moving by the sliding rule
+    ż = (I − z zᵀ)·ḋ/u_y,i), μ_i·W/u_y,i·(I − z zᵀ), and for any other element its sticking
+    stiffness μ_i·W/u_y,i·I (an element that is not carried sticks; where it starts to slide
+    the kink search lands the step, and the rate does not switch inside a stage's solve)."""
+    b = _E0 + 4 * i
+    kr, q, uyi, gap, ks = p[b], p[b + 1], p[b + 2], p[b + 3], p[_K0]
+    g = q / uyi
+    kxx, kxy, kyy = kr + g, 0.0, kr + g
+    if (carry >> i) & 1:
+        zx, zy = z[2 * i], z[2 * i + 1]
+        kxx -= g * zx * zx
+        kxy -= g * zx * zy
+        kyy -= g * zy * zy
+    dx, dy = r[5 + 2 * i], r[6 + 2 * i]
+    rr = np.sqrt(dx * dx + dy * dy)
+    if rr > gap:
+        ex, ey = dx / rr, dy / rr
+        a = ks * gap / rr
+        kxx += ks - a + a * ex * ex
+        kxy += a * ex * ey
+        kyy += ks - a + a * ey * ey
+    return _inverse(kxx, kxy, kyy)
+
+
+@njit(cache=True)
+def _series_rate(p, s, r, carry, z):
+    """(S⁻¹ as (kxx, kxy, kyy) [kip/in], the elements' compliances C_i [in/kip]) at the series
+    result ``r``, the carried mask ``carry`` and their z: Ḟ = S⁻¹·v, S = Σ_i C_i, and
+    ḋ_i = C_i·Ḟ (:func:`_rate_compliance`)."""
+    comp = (_rate_compliance(p, 0, s, r, carry, z), _rate_compliance(p, 1, s, r, carry, z),
+            _rate_compliance(p, 2, s, r, carry, z))
+    kxx, kxy, kyy = _inverse(comp[0][0] + comp[1][0] + comp[2][0],
+                             comp[0][1] + comp[1][1] + comp[2][1],
+                             comp[0][2] + comp[1][2] + comp[2][2])
+    return kxx, kxy, kyy, comp
+
+
+@njit(cache=True)
+def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
+    """The rate ż = g(z; u, v) [1/s] of the carried hysteretic vectors into ``g`` (6,) and
+    ∂g/∂z into ``J`` (6 × 6) at the bearing's displacement (ux, uy) [in] and velocity (vx, vy)
+    [in/s]: the series carries one force F, so Ḟ = (Σ_i C_i)⁻¹·v and ḋ_i = C_i·Ḟ with each
+    element's compliance C_i (:func:`_rate_compliance`), and a carried element's z moves by the
+    sliding rule ż_i = (ḋ_i − (z_i·ḋ_i)·z_i)/u_y,i (the single pendulum's, with its own
+    displacement rate). Elements not carried have zero rows. The Jacobian differentiates z's
+    direct part and C_i's dependence on z_i (the restrainers' tangents taken as constant:
+    Newton needs it approximately). Along a line through the z_i (v and every z_i along it,
+    |z_i| = 1) g is exactly zero. (Every flagged element is carried here: the release of an
+    element whose stage moved back is the force's and the commit's, as the single pendulum's;
+    a rate that switched with it would stall the stage's Newton.)"""
+    carry = int(s[_CARRY])
+    r = _series(p, s, 0, ux, uy, carry, z)
+    for a in range(N_RATE_PLAN):
+        g[a] = 0.0
+        for b in range(N_RATE_PLAN):
+            J[a, b] = 0.0
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+    fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy  # Ḟ
+    for i in range(3):
+        if not (carry >> i) & 1:
+            continue
+        ci = comp[i]
+        ddx, ddy = ci[0] * fx + ci[1] * fy, ci[1] * fx + ci[2] * fy  # ḋ_i
+        zx, zy = z[2 * i], z[2 * i + 1]
+        uyi = p[_E0 + 4 * i + 2]
+        gi = p[_E0 + 4 * i + 1] / uyi
+        zd = zx * ddx + zy * ddy
+        g[2 * i] = (ddx - zd * zx) / uyi
+        g[2 * i + 1] = (ddy - zd * zy) / uyi
+        for k in range(2):
+            ddk = ddx if k == 0 else ddy
+            # ∂(B_i)/∂z_ik·ḋ_i, B_i = C_i⁻¹: w = −μW/u_y·(e_k·(z·ḋ) + z·ḋ_k)
+            wx = -gi * ((zd if k == 0 else 0.0) + zx * ddk)
+            wy = -gi * ((zd if k == 1 else 0.0) + zy * ddk)
+            cwx, cwy = ci[0] * wx + ci[1] * wy, ci[1] * wx + ci[2] * wy
+            dfx, dfy = kxx * cwx + kxy * cwy, kxy * cwx + kyy * cwy  # ∂Ḟ = S⁻¹·C_i·w
+            for m in range(3):
+                if not (carry >> m) & 1:
+                    continue
+                cm = comp[m]
+                ex, ey = cm[0] * dfx + cm[1] * dfy, cm[1] * dfx + cm[2] * dfy  # ∂ḋ_m
+                if m == i:
+                    ex -= cwx
+                    ey -= cwy
+                zmx, zmy = z[2 * m], z[2 * m + 1]
+                uym = p[_E0 + 4 * m + 2]
+                ze = zmx * ex + zmy * ey
+                jx = (ex - ze * zmx) / uym
+                jy = (ey - ze * zmy) / uym
+                if m == i:  # the rule's own dependence on z_i
+                    jx -= (ddk * zx + (zd if k == 0 else 0.0)) / uyi
+                    jy -= (ddk * zy + (zd if k == 1 else 0.0)) / uyi
+                J[2 * m, 2 * i + k] = jx
+                J[2 * m + 1, 2 * i + k] = jy
+
+
+@njit(cache=True)
+def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
+    """(r, ṙ): r = min over the carried elements of z_i·Ḟ, the first of them to unload (a
+    sliding element's own displacement rate along z_i is z_i·Ḟ/(W/L̄_i) away from its
+    restrainer: the sign of z_i·Ḟ is its loading; the bearing's velocity along z_1 can be
+    negative while it loads, when the outer elements slide too), and that element's
+    ṙ = ż_i·Ḟ + z_i·S⁻¹·a at the acceleration (ax, ay) [in/s²] (the compliances' own rates left
+    out: the crossing's estimate, which the landing refines)."""
+    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    carry = int(s[_CARRY])
+    r = _series(p, s, 0, ux, uy, carry, z)
+    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z)
+    fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
+    fax, fay = kxx * ax + kxy * ay, kxy * ax + kyy * ay
+    least, rate = np.inf, 0.0
+    for i in range(3):
+        if (carry >> i) & 1:
+            zx, zy = z[2 * i], z[2 * i + 1]
+            ri = zx * fx + zy * fy
+            if ri < least:
+                least = ri
+                rate = (g[2 * i] * fx + g[2 * i + 1] * fy) + (zx * fax + zy * fay)
+    return least, rate
+
+
+@njit(cache=True)
+def plan_rate_branch(p, s, ux, uy, z):
+    """The branch at the trial (ux, uy) [in] of a step that carries the sliding elements' z,
+    given in ``z`` there: the carried solve's (:func:`_carried_solve`), Σ_i (sliding_i·2^i +
+    contact_i·2^(3+i)). It changes where an element that sticks starts to slide (its trial
+    from the committed state, with the carried elements' z at that point, leaves its disk),
+    where a restrainer engages, and where a carried element moves back."""
+    r, _ = _carried_solve(p, s, ux, uy, z)
+    return int(r[18])
+
+
+@njit(cache=True)
+def plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c):
+    """Force ``f`` [kip] (2,), ∂f/∂u ``k`` [kip/in] and ∂f/∂v ``c`` (zero) (2, 2) in place at
+    (ux, uy) [in] with the carried elements' hysteretic vectors given in ``z`` (a stage's): the
+    series solve with those elements sliding at their given friction force (no friction
+    stiffness), the others from the committed state (:func:`_carried_solve`)."""
+    r, _ = _carried_solve(p, s, ux, uy, z)
+    f[0] = r[0]
+    f[1] = r[1]
+    k[0, 0] = r[2]
+    k[0, 1] = r[3]
+    k[1, 0] = r[3]
+    k[1, 1] = r[4]
+    c[0, 0] = 0.0
+    c[0, 1] = 0.0
+    c[1, 0] = 0.0
+    c[1, 1] = 0.0
+
+
+@njit(cache=True)
+def plan_rate_commit(p, s, ux, uy, vx, vy, z):
+    """Commit the end (ux, uy) [in] of a step that carried the sliding elements' z, ``z`` their
+    end values: each carried z put on the rim (the rate form leaves |z| − 1 at the step's
+    truncation error; normalised in ``z`` in place), then the series state there with those z
+    (:func:`_carried_solve`), so that the committed internal state is in equilibrium with its
+    z (else a solve from it at the same displacement finds the element just inside its disk and
+    the kink search lands a sliver at the next step's start)."""
+    carry = int(s[_CARRY])
+    for i in range(3):
+        if (carry >> i) & 1:
+            zx, zy = z[2 * i], z[2 * i + 1]
+            norm = np.sqrt(zx * zx + zy * zy)
+            z[2 * i] = zx / norm
+            z[2 * i + 1] = zy / norm
+    r, _ = _carried_solve(p, s, ux, uy, z)
+    _store(s, 0, r)
 
 
 # ---- on one axis: the plan element with u_y = v_y = 0 -------------------------------------------

@@ -20,8 +20,11 @@ for every run: :func:`femoat.integration.driver.run_chunk` takes one of each).
   for the explicit steps (:mod:`femoat.integration.methods.dp5`, ``ark5``) their stages ``kv``,
   ``ka``, error ``eu``, ``ev``, energy increments ``de`` and the walls' cached propagators; for
   the coupled-friction step the plan bearings that carry their friction state ``b_rate`` (flag
-  per bearing, cleared before every step attempt and at the commit), that state at the current
-  stage ``bz`` (nb, 2) and its stage rates ``kz`` (stages, nb, 2)).
+  per bearing: the width of its state, 0 when not carried; cleared before every step attempt
+  and at the commit), that state at the current stage ``bz`` (nb, nq) and its stage rates ``kz``
+  (stages, nb, nq), nq the registry's ``rate_width()``, and scratch for a stage's solve and the
+  kink and turn searches ``rz``, ``rg``, ``rw``, ``rv`` (nq,), ``rJ`` (nq, nq), ``rA`` (nq,
+  nq + 1)).
 * :class:`Recorder`: the history buffers of :mod:`~femoat.integration.recording.channels` (one
   row per recorded sample; sample k in row k modulo their length: a ring of
   ``recorder.RING_ROWS`` rows when the run keeps no history; a channel with zero columns is not
@@ -80,5 +83,6 @@ Settings = namedtuple("Settings", [
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "bf", "cf",
                            "cd", "cft", "ag1", "ag_stage", "k22",
                            "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
-                           "wscratch", "s_tmp", "b_rate", "bz", "kz"])
+                           "wscratch", "s_tmp", "b_rate", "bz", "kz", "rz", "rg", "rw", "rv",
+                           "rJ", "rA"])
 Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])

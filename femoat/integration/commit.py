@@ -57,8 +57,7 @@ def accept(hh, ag1, landing, explicit_step, model, state, settings, work):
                                + (b_f[e, 1] + w_bf[e, 1]) * (work.u[iy] - u[iy]))
         if work.b_rate[e] != 0:  # the step carried its friction state (ark5): commit it
             bearing_plan_rate_commit(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix],
-                                     work.u[iy], work.v[ix], work.v[iy], work.bz[e, 0],
-                                     work.bz[e, 1])
+                                     work.u[iy], work.v[ix], work.v[iy], work.bz[e])
             work.b_rate[e] = 0
         else:
             bearing_plan_commit(model.b_kind[e], model.b_P[e], state.b_S[e], u[ix], u[iy],

@@ -202,7 +202,7 @@ def _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, 
         ix, iy = dofs[0], dofs[1]
         if b_rate[e] != 0:
             bearing_plan_rate_force(model.b_kind[e], model.b_P[e], b_S[e], u[ix], u[iy], v[ix],
-                                    v[iy], b_z[e, 0], b_z[e, 1], b_f[e], kb, cb)
+                                    v[iy], b_z[e], b_f[e], kb, cb)
         else:
             bearing_plan_trial(model.b_kind[e], model.b_P[e], b_S[e], u0[ix], u0[iy], v0[ix],
                                v0[iy], u[ix], u[iy], v[ix], v[iy], tau, b_f[e], kb, cb)

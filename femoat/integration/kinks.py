@@ -8,7 +8,9 @@ import numpy as np
 from femoat.bearings.dispatch import (
     bearing_plan_branch,
     bearing_plan_rate,
+    bearing_plan_rate_branch,
     bearing_plan_rate_state,
+    bearing_plan_rate_turn,
     bearing_plan_turn_direction,
 )
 from femoat.compilation.jit import njit
@@ -56,16 +58,66 @@ def _bearing_path(e, th, hh, model, state, work):
 @njit(cache=True, inline="always")
 def _off_line(e, model, state, work):
     """Whether the plan bearing ``e``'s step leaves the line of its displacement increment: the
-    velocities at both ends or the committed hysteretic direction are not parallel to it (the
-    test of ``friction_pendulum._path_z``; a kind without a rate form: always)."""
+    velocities at both ends or the committed hysteretic direction (the first two entries of its
+    rate-form state) are not parallel to it (the test of ``friction_pendulum._path_z``; a kind
+    without a rate form: always)."""
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
     dx, dy = work.u[ix] - state.u[ix], work.u[iy] - state.u[iy]
-    zx, zy = bearing_plan_rate_state(model.b_kind[e], state.b_S[e])
+    z = work.rz
+    if bearing_plan_rate_state(model.b_kind[e], model.b_P[e], state.b_S[e], z) == 0:
+        return True
+    zx, zy = z[0], z[1]
     if not (np.isfinite(zx) and np.isfinite(zy)):
         return True
     cross = (abs(dx * state.v[iy] - dy * state.v[ix]) + abs(dx * work.v[iy] - dy * work.v[ix])
              + abs(dx * zy - dy * zx))
     return cross != 0.0
+
+
+@njit(cache=True, inline="always")
+def _carried_branch(kind, p, s, th, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, nq, moved, z1,
+                    z0, g0, g1, zt):
+    """The carried bearing's branch at fraction ``th`` of the step: the displacement on the
+    step's cubic Hermite path, z on the cubic Hermite of its values and rates at both ends."""
+    ux, _ = hermite(th, hh, u0x, v0x, u1x, v1x)
+    uy, _ = hermite(th, hh, u0y, v0y, u1y, v1y)
+    for q in range(nq):
+        if moved:
+            zt[q], _ = hermite(th, hh, z0[q], g0[q], z1[q], g1[q])
+        else:
+            zt[q] = z0[q]
+    return bearing_plan_rate_branch(kind, p, s, ux, uy, zt)
+
+
+@njit(cache=True)
+def _carried_kink(kind, p, s, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, z1, z0, g0, g1, zt, J,
+                  bisections):
+    """Fraction θ just past the change of branch of a bearing whose step carried its friction
+    state (``kind``'s ``plan_rate_branch``, z following the step: its cubic Hermite from its
+    values and rates at both ends, exact to the step's order where the branch is a function of
+    z, as a triple pendulum's sticking elements are), 2 when it stays on one branch (``z0``,
+    ``g0``, ``g1``, ``zt``, ``J`` scratch; its own compiled function, as :func:`_carried_turn`)."""
+    nq = bearing_plan_rate_state(kind, p, s, z0)
+    moved = False
+    for q in range(nq):
+        if z1[q] != z0[q]:
+            moved = True
+    if moved:
+        bearing_plan_rate(kind, p, s, u0x, u0y, v0x, v0y, z0, g0, J)
+        bearing_plan_rate(kind, p, s, u1x, u1y, v1x, v1y, z1, g1, J)
+    lo, hi = 2.0 ** -bisections, 1.0
+    branch0 = _carried_branch(kind, p, s, lo, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, nq,
+                              moved, z1, z0, g0, g1, zt)
+    if bearing_plan_rate_branch(kind, p, s, u1x, u1y, z1) == branch0:
+        return 2.0
+    for _ in range(bisections):
+        mid = 0.5 * (lo + hi)
+        if _carried_branch(kind, p, s, mid, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, nq,
+                           moved, z1, z0, g0, g1, zt) == branch0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
 
 
 @njit(cache=True, inline="always")
@@ -76,6 +128,11 @@ def _bearing_kink(e, hh, model, state, work, fine):
     kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
     bisections = FINE_BISECTIONS if fine and _off_line(e, model, state, work) else \
         KINK_BISECTIONS
+    if work.b_rate[e] != 0:
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        return _carried_kink(kind, p, s, hh, state.u[ix], state.u[iy], state.v[ix], state.v[iy],
+                             work.u[ix], work.u[iy], work.v[ix], work.v[iy], work.bz[e],
+                             work.rz, work.rg, work.rw, work.rv, work.rJ, bisections)
     lo, hi = 2.0 ** -bisections, 1.0
     ux, uy = _bearing_path(e, lo, hh, model, state, work)
     branch0 = bearing_plan_branch(kind, p, s, ux, uy)
@@ -93,18 +150,20 @@ def _bearing_kink(e, hh, model, state, work, fine):
 
 
 @njit(cache=True)
-def _carried_turn(kind, p, s, v0x, v0y, a0x, a0y, v1x, v1y, a1x, a1y, z1x, z1y):
-    """(r0, ṙ0, r1, ṙ1, z moved) of r = z·v over a step that carried the bearing's friction
-    state from the committed ``s`` to (z1x, z1y): ṙ = g(z, v)·v + z·a (its own compiled
-    function: called only for a carried bearing, compiled once, not inside the loop)."""
-    z0x, z0y = bearing_plan_rate_state(kind, s)
-    g0 = bearing_plan_rate(kind, p, z0x, z0y, v0x, v0y)
-    g1 = bearing_plan_rate(kind, p, z1x, z1y, v1x, v1y)
-    r0 = z0x * v0x + z0y * v0y
-    dr0 = (z0x * a0x + z0y * a0y) + (g0[0] * v0x + g0[1] * v0y)
-    r1 = z1x * v1x + z1y * v1y
-    dr1 = (z1x * a1x + z1y * a1y) + (g1[0] * v1x + g1[1] * v1y)
-    return r0, dr0, r1, dr1, z1x != z0x or z1y != z0y
+def _carried_turn(kind, p, s, u0x, u0y, v0x, v0y, a0x, a0y, u1x, u1y, v1x, v1y, a1x, a1y, z1,
+                  z0, g, J):
+    """(r0, ṙ0, r1, ṙ1, z moved) of the kind's loading measure r (the pendulum's z·v, with
+    ṙ = g(z; u, v)·v + z·a) over a step that carried the bearing's friction state from the
+    committed ``s`` to ``z1`` (``z0``, ``g``, ``J`` scratch; its own compiled function: called
+    only for a carried bearing, compiled once, not inside the loop)."""
+    nq = bearing_plan_rate_state(kind, p, s, z0)
+    r0, dr0 = bearing_plan_rate_turn(kind, p, s, u0x, u0y, v0x, v0y, a0x, a0y, z0, g, J)
+    r1, dr1 = bearing_plan_rate_turn(kind, p, s, u1x, u1y, v1x, v1y, a1x, a1y, z1, g, J)
+    moved = False
+    for q in range(nq):
+        if z1[q] != z0[q]:
+            moved = True
+    return r0, dr0, r1, dr1, moved
 
 
 @njit(cache=True, inline="always")
@@ -128,8 +187,9 @@ def _bearing_turn(e, hh, model, state, work, fine):
     moved = False
     if work.b_rate[e]:
         r0, dr0, r1, dr1, moved = _carried_turn(
-            kind, model.b_P[e], state.b_S[e], v0x, v0y, state.a[ix], state.a[iy], v1x, v1y,
-            work.a[ix], work.a[iy], work.bz[e, 0], work.bz[e, 1])
+            kind, model.b_P[e], state.b_S[e], state.u[ix], state.u[iy], v0x, v0y, state.a[ix],
+            state.a[iy], work.u[ix], work.u[iy], v1x, v1y, work.a[ix], work.a[iy], work.bz[e],
+            work.rz, work.rg, work.rJ)
     else:
         r1 = zx * v1x + zy * v1y
         dr1 = zx * work.a[ix] + zy * work.a[iy]

@@ -282,6 +282,7 @@ def _bundles(packed, ag, u, v, settings):
     nel, ncon = packed.el_code.size, packed.c_code.size
     plan = _plan_arrays(packed)
     nb, nk = plan.b_dofs.shape[0], ag.shape[1]
+    nq = bearing_registry.rate_width()
     model = Model(M=packed.M, C=packed.C, K=packed.K, r=_ground(packed), ag=ag,
                   dof_axis=plan.dof_axis, base_xy=plan.base_xy, el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P,
@@ -313,7 +314,9 @@ def _bundles(packed, ag, u, v, settings):
                 ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]), b_rate=np.zeros(nb, dtype=np.int64),
-                bz=np.zeros((nb, 2)), kz=np.zeros((N_STAGES, nb, 2)))
+                bz=np.zeros((nb, nq)), kz=np.zeros((N_STAGES, nb, nq)), rz=np.zeros(nq),
+                rg=np.zeros(nq), rw=np.zeros(nq), rv=np.zeros(nq), rJ=np.zeros((nq, nq)),
+                rA=np.zeros((nq, nq + 1)))
     return model, state, work
 
 

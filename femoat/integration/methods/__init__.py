@@ -58,7 +58,7 @@ def step(code, hh, ag1, any_closed, model, state, settings, work):
     how = ark5.plan(model, state, work) if code == 2 else ark5.DP5_STEP
     if how != ark5.COUPLED:
         solved, err = dp5.step(hh, ag1, any_closed, model, state, settings, work)
-        if code == 1 or how == ark5.DP5_STEP or (solved and ark5.rates_vanish(model, work)):
+        if code == 1 or how == ark5.DP5_STEP or (solved and ark5.rates_vanish(model, state, work)):
             return solved, err
     return ark5.step(hh, ag1, any_closed, model, state, settings, work)
 

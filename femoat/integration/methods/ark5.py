@@ -144,101 +144,152 @@ MAX_NEWTON = 20
 
 @njit(cache=True, inline="always")
 def _flag_carried(model, state, work):
-    """Flag the plan bearings whose friction state this step carries (``work.b_rate``: they slide
-    and keep loading), their committed state into ``work.bz``. Returns (any flagged, every
-    flagged rate zero at the start: at the committed velocity and, as a rate at the committed
-    acceleration, its first derivative for a rate linear in v)."""
+    """Flag the plan bearings whose friction state this step carries (``work.b_rate``: the
+    width of the state, nonzero; the pendulum: it slides and keeps loading), their committed
+    state into ``work.bz``. Returns (any flagged, every flagged rate zero at the start: at the
+    committed velocity and, as a rate at the committed acceleration, its first derivative for a
+    rate linear in v)."""
     flagged = False
     still = True
-    v, a = state.v, state.a
+    u, v, a = state.u, state.v, state.a
+    g, J = work.rg, work.rJ
     for e in range(model.b_dofs.shape[0]):
         kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
         if not bearing_plan_rate_active(kind, p, s, v[ix], v[iy]):
             continue
-        work.b_rate[e] = 1
+        z = work.bz[e]
+        nq = bearing_plan_rate_state(kind, p, s, z)
+        work.b_rate[e] = nq
         flagged = True
-        zx, zy = bearing_plan_rate_state(kind, s)
-        work.bz[e, 0] = zx
-        work.bz[e, 1] = zy
-        g = bearing_plan_rate(kind, p, zx, zy, v[ix], v[iy])
-        ga = bearing_plan_rate(kind, p, zx, zy, a[ix], a[iy])
-        if g[0] != 0.0 or g[1] != 0.0 or ga[0] != 0.0 or ga[1] != 0.0:
-            still = False
+        bearing_plan_rate(kind, p, s, u[ix], u[iy], v[ix], v[iy], z, g, J)
+        for q in range(nq):
+            if g[q] != 0.0:
+                still = False
+        bearing_plan_rate(kind, p, s, u[ix], u[iy], a[ix], a[iy], z, g, J)
+        for q in range(nq):
+            if g[q] != 0.0:
+                still = False
     return flagged, still
 
 
 @njit(cache=True, inline="always")
-def _rates_vanish(n_stages, model, work):
+def _rates_vanish(n_stages, model, state, work):
     """Whether every carried state's rate at its (constant) value is exactly zero at each of
-    the ``n_stages`` stage velocities in ``work.kv``: the step never moved it."""
+    the ``n_stages`` stage velocities in ``work.kv`` (at the step's end displacement): the
+    step never moved it."""
+    g, J = work.rg, work.rJ
     for e in range(model.b_dofs.shape[0]):
-        if work.b_rate[e] == 0:
+        nq = work.b_rate[e]
+        if nq == 0:
             continue
-        kind, p = model.b_kind[e], model.b_P[e]
+        kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        for s in range(n_stages):
-            g = bearing_plan_rate(kind, p, work.bz[e, 0], work.bz[e, 1], work.kv[s, ix],
-                                  work.kv[s, iy])
-            if g[0] != 0.0 or g[1] != 0.0:
-                return False
+        for st in range(n_stages):
+            bearing_plan_rate(kind, p, s, work.u[ix], work.u[iy], work.kv[st, ix],
+                              work.kv[st, iy], work.bz[e], g, J)
+            for q in range(nq):
+                if g[q] != 0.0:
+                    return False
     return True
 
 
 @njit(cache=True, inline="always")
-def _stage_rates(s, model, work):
-    """g_s = g(Z_s, V_s) of each carried state into ``work.kz[s]``."""
+def _stage_rates(st, model, state, work):
+    """g_s = g(Z_s; U_s, V_s) of each carried state into ``work.kz[st]``."""
+    g, J = work.rg, work.rJ
     for e in range(model.b_dofs.shape[0]):
-        if work.b_rate[e] == 0:
+        nq = work.b_rate[e]
+        if nq == 0:
             continue
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        g = bearing_plan_rate(model.b_kind[e], model.b_P[e], work.bz[e, 0], work.bz[e, 1],
-                              work.v[ix], work.v[iy])
-        work.kz[s, e, 0] = g[0]
-        work.kz[s, e, 1] = g[1]
+        bearing_plan_rate(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix], work.u[iy],
+                          work.v[ix], work.v[iy], work.bz[e], g, J)
+        for q in range(nq):
+            work.kz[st, e, q] = g[q]
 
 
 @njit(cache=True, inline="always")
-def _solve_stage_states(s, hh, model, state, work):
-    """Each carried state at stage ``s``: Z = w + h·γ·g(Z, V_s), w = z_n + h·Σ_{j<s} a^I_sj·g_j,
-    by Newton's method from the previous stage's Z (into ``work.bz``). False when one does not
-    converge (the step is then retried shorter)."""
-    hg = hh * ARK_AI[s, s]
+def _solve_stage_states(st, hh, model, state, work):
+    """Each carried state at stage ``st``: Z = w + h·γ·g(Z; U_s, V_s), w = z_n + h·Σ_{j<s}
+    a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``work.bz``). False when
+    one does not converge (the step is then retried shorter)."""
+    hg = hh * ARK_AI[st, st]
+    g, J, w, z0 = work.rg, work.rJ, work.rw, work.rz
     for e in range(model.b_dofs.shape[0]):
-        if work.b_rate[e] == 0:
+        nq = work.b_rate[e]
+        if nq == 0:
             continue
-        kind, p = model.b_kind[e], model.b_P[e]
-        z0x, z0y = bearing_plan_rate_state(kind, state.b_S[e])
-        wx = 0.0
-        wy = 0.0
-        for j in range(s):
-            wx += ARK_AI[s, j] * work.kz[j, e, 0]
-            wy += ARK_AI[s, j] * work.kz[j, e, 1]
-        wx = z0x + hh * wx
-        wy = z0y + hh * wy
+        kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
+        bearing_plan_rate_state(kind, p, s, z0)
+        for q in range(nq):
+            acc = 0.0
+            for j in range(st):
+                acc += ARK_AI[st, j] * work.kz[j, e, q]
+            w[q] = z0[q] + hh * acc
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        vx, vy = work.v[ix], work.v[iy]
-        zx, zy = work.bz[e, 0], work.bz[e, 1]
+        ux, uy, vx, vy = work.u[ix], work.u[iy], work.v[ix], work.v[iy]
+        z = work.bz[e]
         step = np.inf
         for _ in range(MAX_NEWTON):
-            gx, gy, j00, j01, j10, j11 = bearing_plan_rate(kind, p, zx, zy, vx, vy)
-            rx = zx - wx - hg * gx
-            ry = zy - wy - hg * gy
-            a00, a01, a10, a11 = 1.0 - hg * j00, -hg * j01, -hg * j10, 1.0 - hg * j11
-            det = a00 * a11 - a01 * a10
-            if not (np.isfinite(det) and det != 0.0):
-                return False
-            dx = (a11 * rx - a01 * ry) / det
-            dy = (a00 * ry - a10 * rx) / det
-            zx -= dx
-            zy -= dy
-            step = abs(dx) + abs(dy)
+            bearing_plan_rate(kind, p, s, ux, uy, vx, vy, z, g, J)
+            if nq == 2:  # the pendulum's and the lead-rubber bearing's 2×2 solve, in closed form
+                rx = z[0] - w[0] - hg * g[0]
+                ry = z[1] - w[1] - hg * g[1]
+                a00, a01, a10, a11 = (1.0 - hg * J[0, 0], -hg * J[0, 1], -hg * J[1, 0],
+                                      1.0 - hg * J[1, 1])
+                det = a00 * a11 - a01 * a10
+                if not (np.isfinite(det) and det != 0.0):
+                    return False
+                dx = (a11 * rx - a01 * ry) / det
+                dy = (a00 * ry - a10 * rx) / det
+                z[0] -= dx
+                z[1] -= dy
+                step = abs(dx) + abs(dy)
+            else:
+                if not _newton_update(nq, hg, z, w, g, J, work.rA):
+                    return False
+                step = 0.0
+                for q in range(nq):
+                    step += abs(g[q])  # (the update, returned in g)
             if step <= NEWTON_TOL:
                 break
         if not step <= NEWTON_ACCEPT:
             return False
-        work.bz[e, 0] = zx
-        work.bz[e, 1] = zy
+    return True
+
+
+@njit(cache=True)
+def _newton_update(nq, hg, z, w, g, J, A):
+    """One Newton update of z for r(z) = z − w − h·γ·g(z) (g and J = ∂g/∂z at z given): solves
+    (I − h·γ·J)·Δ = r by Gaussian elimination with partial pivoting (``A`` scratch), z −= Δ, Δ
+    into ``g``. False for a singular or non-finite system."""
+    for i in range(nq):
+        for j in range(nq):
+            A[i, j] = (1.0 if i == j else 0.0) - hg * J[i, j]
+        A[i, nq] = z[i] - w[i] - hg * g[i]
+    for c in range(nq):
+        piv = c
+        for i in range(c + 1, nq):
+            if abs(A[i, c]) > abs(A[piv, c]):
+                piv = i
+        if not (np.isfinite(A[piv, c]) and A[piv, c] != 0.0):
+            return False
+        if piv != c:
+            for j in range(nq + 1):
+                A[c, j], A[piv, j] = A[piv, j], A[c, j]
+        for i in range(c + 1, nq):
+            m = A[i, c] / A[c, c]
+            if m != 0.0:
+                for j in range(c, nq + 1):
+                    A[i, j] -= m * A[c, j]
+    for i in range(nq - 1, -1, -1):
+        acc = A[i, nq]
+        for j in range(i + 1, nq):
+            acc -= A[i, j] * g[j]
+        g[i] = acc / A[i, i]
+    for i in range(nq):
+        z[i] -= g[i]
     return True
 
 
@@ -247,18 +298,19 @@ def _friction_force_error(hh, model, state, work):
     """Add each carried state's error e_z = h·Σ (b − b̂)_s·g_s, as the force f(z) − f(z − e_z)
     at the step's end, to the force error ``work.b`` (after :func:`dp5.force_error`)."""
     f2, kb, cb = work.k22[2, 0], work.k22[0], work.k22[1]
+    zc = work.rw
     for e in range(model.b_dofs.shape[0]):
-        if work.b_rate[e] == 0:
+        nq = work.b_rate[e]
+        if nq == 0:
             continue
-        ezx = 0.0
-        ezy = 0.0
-        for s in range(N_STAGES):
-            ezx += ARK_E[s] * work.kz[s, e, 0]
-            ezy += ARK_E[s] * work.kz[s, e, 1]
+        for q in range(nq):
+            ez = 0.0
+            for st in range(N_STAGES):
+                ez += ARK_E[st] * work.kz[st, e, q]
+            zc[q] = work.bz[e, q] - hh * ez
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
         bearing_plan_rate_force(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix],
-                                work.u[iy], work.v[ix], work.v[iy], work.bz[e, 0] - hh * ezx,
-                                work.bz[e, 1] - hh * ezy, f2, kb, cb)
+                                work.u[iy], work.v[ix], work.v[iy], zc, f2, kb, cb)
         work.b[ix] += work.bf[e, 0] - f2[0]
         work.b[iy] += work.bf[e, 1] - f2[1]
 
@@ -306,11 +358,12 @@ def coupled_step(hh, ag1, model, state, settings, work):
     for i in range(nb):
         kv[0, i] = v0[i]
         ka[0, i] = state.a[i]
+        work.u[i] = u0[i]
         work.v[i] = v0[i]
     for i in range(nb, n):
         work.u[i] = u0[i]
         work.v[i] = v0[i]
-    _stage_rates(0, model, work)
+    _stage_rates(0, model, state, work)
     ag = work.ag_stage
     for s in range(1, N_STAGES + 1):
         last = s == N_STAGES
@@ -333,7 +386,7 @@ def coupled_step(hh, ag1, model, state, settings, work):
                 ka[s, i] = acc
                 kv[s, i] = work.v[i]
         if not last:
-            _stage_rates(s, model, work)
+            _stage_rates(s, model, state, work)
     dp5.walls_exact(hh, ag0, ag1, nb, model, state, work)
     dp5.stage_energy(ARK_B, ARK_C, hh, ag0, ag1, nb, model, work)
     if not dp5.open_end(model, work):
@@ -369,10 +422,10 @@ def plan(model, state, work):
 
 
 @njit(cache=True)
-def rates_vanish(model, work):
+def rates_vanish(model, state, work):
     """After dp5's step with the carried states held: their rate was zero at every stage (the
     step is then this method's step too)."""
-    return _rates_vanish(dp5.N_STAGES, model, work)
+    return _rates_vanish(dp5.N_STAGES, model, state, work)
 
 
 @njit(cache=True, inline="always")
