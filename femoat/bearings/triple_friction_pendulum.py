@@ -132,6 +132,22 @@ reference, the CPU against the chord's):
 accuracy. The tangent is the last piece's (Newton only needs it approximately: 20 % more
 iterations than with the chord).
 
+Rate form (the coupled-friction step, :mod:`femoat.integration.methods.ark5`; a plan run's
+default): while the inner element slides and loads, each element that slides and loads carries
+its z as a state of the step (``N_RATE_PLAN`` = 6: z_1, z_2, z_3; the carried mask in the scratch
+slot ``_CARRY``, set by :func:`plan_rate_active`). The series carries one force F, so with each
+element's compliance C_i (its spring and restrainer, and for a carried element the sliding rule's
+μ_i·W/u_y,i·(I − z_i z_iᵀ), for the others their sticking stiffness) Ḟ = (Σ C_i)⁻¹·v, ḋ_i = C_i·Ḟ,
+and a carried z moves by the single pendulum's rule on its own displacement rate,
+ż_i = (ḋ_i − (z_i·ḋ_i)·z_i)/u_y,i (:func:`plan_rate`, with its 6 × 6 Jacobian). At a stage the
+force is the series solve with the carried elements sliding at their given z and the others
+from the committed state (:func:`_carried_solve`): exact while they stick. The switches are
+landed on: an element that starts to slide (the kink search follows the carried z along the step,
+:func:`plan_rate_branch`), a carried element that unloads (z_i·Ḟ crossing zero,
+:func:`plan_rate_turn`). Along one axis the rates vanish and the plan run is the 1D default run
+to the bit. Measured orders on the bearing alone and the cost on real records:
+``benchmarks/README.md`` (issue 28).
+
 OpenSees twin: ``TripleFrictionPendulum`` (Dao et al., 2013) is this series model, each element
 a kinematic-hardening plasticity (elastic modulus E = 3·μ1_OS/u_y_OS·W for all three, the
 quirk) in parallel with a circular gap spring of stiffness E. Linear kinematic hardening with a
@@ -655,29 +671,44 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
                 J[2 * m + 1, 2 * i + k] = jy
 
 
+TURN_PROBE = 1e-7
+"""[s] The time step of :func:`plan_rate_turn`'s difference quotient for ṙ."""
+
+
+@njit(cache=True, inline="always")
+def _loading(p, s, ux, uy, vx, vy, z, carry, which):
+    """(min over the carried elements of z_i·Ḟ, its element) at (ux, uy) [in], (vx, vy) [in/s]
+    and the carried z (``which`` >= 0: that element's z_i·Ḟ)."""
+    r = _series(p, s, 0, ux, uy, carry, z)
+    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z)
+    fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
+    least, at = np.inf, -1
+    for i in range(3):
+        if (carry >> i) & 1 and (which < 0 or i == which):
+            ri = z[2 * i] * fx + z[2 * i + 1] * fy
+            if ri < least:
+                least, at = ri, i
+    return least, at
+
+
 @njit(cache=True)
 def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
     """(r, ṙ): r = min over the carried elements of z_i·Ḟ, the first of them to unload (a
     sliding element's own displacement rate along z_i is z_i·Ḟ/(W/L̄_i) away from its
     restrainer: the sign of z_i·Ḟ is its loading; the bearing's velocity along z_1 can be
-    negative while it loads, when the outer elements slide too), and that element's
-    ṙ = ż_i·Ḟ + z_i·S⁻¹·a at the acceleration (ax, ay) [in/s²] (the compliances' own rates left
-    out: the crossing's estimate, which the landing refines)."""
-    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    negative while it loads, when the outer elements slide too), and that element's ṙ at the
+    acceleration (ax, ay) [in/s²], a difference quotient over TURN_PROBE along (v, a, ż) (Ḟ's
+    rate has the compliances' own rates in it: an estimate without them set the landing off by
+    O(h²), the order of the whole step on orbits where the outer elements turn). ``J``'s first
+    row is scratch."""
     carry = int(s[_CARRY])
-    r = _series(p, s, 0, ux, uy, carry, z)
-    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z)
-    fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
-    fax, fay = kxx * ax + kxy * ay, kxy * ax + kyy * ay
-    least, rate = np.inf, 0.0
-    for i in range(3):
-        if (carry >> i) & 1:
-            zx, zy = z[2 * i], z[2 * i + 1]
-            ri = zx * fx + zy * fy
-            if ri < least:
-                least = ri
-                rate = (g[2 * i] * fx + g[2 * i + 1] * fy) + (zx * fax + zy * fay)
-    return least, rate
+    r0, at = _loading(p, s, ux, uy, vx, vy, z, carry, -1)
+    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    e = TURN_PROBE
+    for q in range(N_RATE_PLAN):
+        J[0, q] = z[q] + e * g[q]
+    r1, _ = _loading(p, s, ux + e * vx, uy + e * vy, vx + e * ax, vy + e * ay, J[0], carry, at)
+    return r0, (r1 - r0) / e
 
 
 @njit(cache=True)
