@@ -700,10 +700,18 @@ def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
     acceleration (ax, ay) [in/s²], a difference quotient over TURN_PROBE along (v, a, ż) (Ḟ's
     rate has the compliances' own rates in it: an estimate without them set the landing off by
     O(h²), the order of the whole step on orbits where the outer elements turn). ``J``'s first
-    row is scratch."""
+    row is scratch. Along a line through the z_i (every rate exactly zero) it is the single
+    pendulum's z_1·v with ṙ = z_1·a: there loading is the motion along z_1, and the turn search
+    is the one-axis bearing's to the bit."""
     carry = int(s[_CARRY])
-    r0, at = _loading(p, s, ux, uy, vx, vy, z, carry, -1)
     plan_rate(p, s, ux, uy, vx, vy, z, g, J)
+    still = True
+    for q in range(N_RATE_PLAN):
+        if g[q] != 0.0:
+            still = False
+    if still:
+        return (z[0] * vx + z[1] * vy), (z[0] * ax + z[1] * ay) + (g[0] * vx + g[1] * vy)
+    r0, at = _loading(p, s, ux, uy, vx, vy, z, carry, -1)
     e = TURN_PROBE
     for q in range(N_RATE_PLAN):
         J[0, q] = z[q] + e * g[q]

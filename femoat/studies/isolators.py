@@ -23,8 +23,7 @@ bidirectional study and the headline suite).
 damping), at the MCE: 1D, every component of the 22 pairs alone along the axis of two walls
 (each dimension's default method: the fifth-order step); 2D, the building in plan in a square
 moat of four such walls under each pair turned by 0° and 45° (each isolator's plan default,
-:func:`femoat.run.plan_method`: ark5 on the pendulum and the lead-rubber bearing, Newmark on
-the triple pendulum, which declares no rate form yet).
+:func:`femoat.run.plan_method`: ark5, each kind's rate form).
 The collapse criteria (a story drift ratio of 10 %, the isolator beyond its capacity: the
 building's 7 in, or the bearing's own where smaller, in plan |u|) mark runs without stopping
 them.
