@@ -118,6 +118,7 @@ import numpy as np
 
 from femoat import checks as _checks
 from femoat.bearings.faces import BearingFaces
+from femoat.bearings.rate_form import turn_along, write_rate
 from femoat.compilation.jit import njit
 
 KEY = "lrb"
@@ -638,13 +639,7 @@ def loading_rate(p, zx, zy, vx, vy):
 def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     """The rate of :func:`loading_rate` into ``g`` (2,) and its Jacobian into ``J`` (at least
     2 × 2) at the velocity (vx, vy) [in/s] (the displacement does not enter)."""
-    r = loading_rate(p, z[0], z[1], vx, vy)
-    g[0] = r[0]
-    g[1] = r[1]
-    J[0, 0] = r[2]
-    J[0, 1] = r[3]
-    J[1, 0] = r[4]
-    J[1, 1] = r[5]
+    write_rate(loading_rate(p, z[0], z[1], vx, vy), g, J)
 
 
 @njit(cache=True)
@@ -652,7 +647,7 @@ def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
     """(r, ṙ): r = z·v, whose crossing of zero downwards unloads the bearing, and its rate
     ṙ = g(z, v)·v + z·a at the acceleration (ax, ay) [in/s²] (``g``, ``J`` scratch)."""
     plan_rate(p, s, ux, uy, vx, vy, z, g, J)
-    return (z[0] * vx + z[1] * vy), (z[0] * ax + z[1] * ay) + (g[0] * vx + g[1] * vy)
+    return turn_along(z, g, vx, vy, ax, ay)
 
 
 @njit(cache=True)

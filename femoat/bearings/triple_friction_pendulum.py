@@ -178,6 +178,7 @@ import numpy as np
 from femoat import checks as _checks
 from femoat.bearings.faces import BearingFaces
 from femoat.bearings.friction_pendulum import _hermite
+from femoat.bearings.rate_form import turn_along
 from femoat.compilation.jit import njit
 
 KEY = "tfp"
@@ -287,6 +288,14 @@ def _committed(p, i, s, o, dux, duy):
         kxx -= g * zx * zx
         kxy -= g * zx * zy
         kyy -= g * zy * zy
+    kxx, kxy, kyy = _restrained(ks, gap, dx, dy, kxx, kxy, kyy)
+    return _inverse(kxx, kxy, kyy)
+
+
+@njit(cache=True, inline="always")
+def _restrained(ks, gap, dx, dy, kxx, kxy, kyy):
+    """The tangent (kxx, kxy, kyy) [kip/in] plus the restrainer's, k_0·((1 − g/r)·I +
+    (g/r)·e eᵀ), where the element's displacement (dx, dy) [in] is past its gap g (r = |d|)."""
     r = np.sqrt(dx * dx + dy * dy)
     if r > gap:
         ex, ey = dx / r, dy / r
@@ -294,7 +303,7 @@ def _committed(p, i, s, o, dux, duy):
         kxx += ks - a + a * ex * ex
         kxy += a * ex * ey
         kyy += ks - a + a * ey * ey
-    return _inverse(kxx, kxy, kyy)
+    return kxx, kxy, kyy
 
 
 @njit(cache=True, inline="always")
@@ -396,6 +405,22 @@ def _store(s, o, r):
 # ---- in plan ------------------------------------------------------------------------------------
 
 
+@njit(cache=True, inline="always")
+def _write_trial(r, f, k, c):
+    """A series result ``r``'s force and tangent into ``f`` (2,), ``k`` (2, 2); ``c`` = 0
+    (constant friction)."""
+    f[0] = r[0]
+    f[1] = r[1]
+    k[0, 0] = r[2]
+    k[0, 1] = r[3]
+    k[1, 0] = r[3]
+    k[1, 1] = r[4]
+    c[0, 0] = 0.0
+    c[0, 1] = 0.0
+    c[1, 0] = 0.0
+    c[1, 1] = 0.0
+
+
 @njit(cache=True)
 def _path(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, pieces):
     """The :func:`series_solve` result at the end (ux, uy) [in] of a step of duration ``tau``
@@ -429,16 +454,7 @@ def plan_trial(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c):
     modified (the walk uses the scratch slots). The tangent is the last piece's; c = 0 (constant
     friction: the velocities only shape the path, which the tangent ignores)."""
     r = _path(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, PIECES)
-    f[0] = r[0]
-    f[1] = r[1]
-    k[0, 0] = r[2]
-    k[0, 1] = r[3]
-    k[1, 0] = r[3]
-    k[1, 1] = r[4]
-    c[0, 0] = 0.0
-    c[0, 1] = 0.0
-    c[1, 0] = 0.0
-    c[1, 1] = 0.0
+    _write_trial(r, f, k, c)
 
 
 @njit(cache=True)
@@ -588,14 +604,7 @@ def _rate_compliance(p, i, s, r, carry, z):
         kxx -= g * zx * zx
         kxy -= g * zx * zy
         kyy -= g * zy * zy
-    dx, dy = r[5 + 2 * i], r[6 + 2 * i]
-    rr = np.sqrt(dx * dx + dy * dy)
-    if rr > gap:
-        ex, ey = dx / rr, dy / rr
-        a = ks * gap / rr
-        kxx += ks - a + a * ex * ex
-        kxy += a * ex * ey
-        kyy += ks - a + a * ey * ey
+    kxx, kxy, kyy = _restrained(ks, gap, r[5 + 2 * i], r[6 + 2 * i], kxx, kxy, kyy)
     return _inverse(kxx, kxy, kyy)
 
 
@@ -710,7 +719,7 @@ def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
         if g[q] != 0.0:
             still = False
     if still:
-        return (z[0] * vx + z[1] * vy), (z[0] * ax + z[1] * ay) + (g[0] * vx + g[1] * vy)
+        return turn_along(z, g, vx, vy, ax, ay)
     r0, at = _loading(p, s, ux, uy, vx, vy, z, carry, -1)
     e = TURN_PROBE
     for q in range(N_RATE_PLAN):
@@ -737,16 +746,7 @@ def plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c):
     series solve with those elements sliding at their given friction force (no friction
     stiffness), the others from the committed state (:func:`_carried_solve`)."""
     r, _ = _carried_solve(p, s, ux, uy, z)
-    f[0] = r[0]
-    f[1] = r[1]
-    k[0, 0] = r[2]
-    k[0, 1] = r[3]
-    k[1, 0] = r[3]
-    k[1, 1] = r[4]
-    c[0, 0] = 0.0
-    c[0, 1] = 0.0
-    c[1, 0] = 0.0
-    c[1, 1] = 0.0
+    _write_trial(r, f, k, c)
 
 
 @njit(cache=True)
