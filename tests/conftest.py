@@ -369,7 +369,19 @@ def _solver_free(item):
     return name.split("::")[0] in SOLVER_FREE or name.split("[")[0] in SOLVER_FREE
 
 
+FIXTURE_FIRST = ("test_study_bidirectional.py", "test_study_isolators.py")
+"""Solver files whose module fixture costs seconds (a study run once for the module's tests):
+first among the solver tests, where pytest-xdist hands out long runs of tests, so that one
+worker (not both) runs the fixture."""
+
+
+def _order(item):
+    if _solver_free(item):
+        return 0
+    return 1 if item.nodeid.split("/")[-1].split("::")[0] in FIXTURE_FIRST else 2
+
+
 def pytest_collection_modifyitems(config, items):
     # a stable sort: the solver-free tests first, every other order kept (the same in every
     # worker, as pytest-xdist requires)
-    items.sort(key=lambda item: not _solver_free(item))
+    items.sort(key=_order)
