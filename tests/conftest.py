@@ -369,16 +369,23 @@ def _solver_free(item):
     return name.split("::")[0] in SOLVER_FREE or name.split("[")[0] in SOLVER_FREE
 
 
-FIXTURE_FIRST = ("test_study_bidirectional.py", "test_study_isolators.py")
-"""Solver files whose module fixture costs seconds (a study run once for the module's tests):
-first among the solver tests, where pytest-xdist hands out long runs of tests, so that one
-worker (not both) runs the fixture."""
+HEAVY_FIRST = ("test_study_bidirectional.py", "test_study_isolators.py", "test_suite_run.py",
+               "test_render_runs.py", "test_suite_methods.py", "test_suite_cluster.py",
+               "test_plan_ark5.py", "test_peak_accuracy.py", "test_examples.py",
+               "test_render_backend.py", "test_timings.py", "test_startup.py",
+               "test_plan_render.py", "test_bearing_twins_farfield.py", "test_paper_study.py",
+               "test_fingerprints.py")
+"""The solver files taking seconds (2-18 s of CPU each, measured), first among the solver tests
+in this order: pytest-xdist hands out long runs of consecutive tests at first, so a module's
+fixture (the studies run once for their module) is run by one worker, not both, and the
+session ends on short tests, the two workers finishing together."""
 
 
 def _order(item):
     if _solver_free(item):
-        return 0
-    return 1 if item.nodeid.split("/")[-1].split("::")[0] in FIXTURE_FIRST else 2
+        return (0, 0)
+    name = item.nodeid.split("/")[-1].split("::")[0]
+    return (1, HEAVY_FIRST.index(name)) if name in HEAVY_FIRST else (2, 0)
 
 
 def pytest_collection_modifyitems(config, items):
