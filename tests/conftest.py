@@ -375,10 +375,8 @@ HEAVY_FIRST = ("test_study_bidirectional.py", "test_study_isolators.py", "test_s
                "test_render_backend.py", "test_timings.py", "test_startup.py",
                "test_plan_render.py", "test_bearing_twins_farfield.py", "test_paper_study.py",
                "test_fingerprints.py")
-"""The solver files taking seconds (2-18 s of CPU each, measured), first among the solver tests
-in this order: pytest-xdist hands out long runs of consecutive tests at first, so a module's
-fixture (the studies run once for their module) is run by one worker, not both, and the
-session ends on short tests, the two workers finishing together."""
+"""The solver files taking seconds (2-18 s of CPU each, measured), first among the solver tests,
+longest first: the session ends on short tests, the two workers finishing together."""
 
 
 def _order(item):
@@ -386,6 +384,20 @@ def _order(item):
         return (0, 0)
     name = item.nodeid.split("/")[-1].split("::")[0]
     return (1, HEAVY_FIRST.index(name)) if name in HEAVY_FIRST else (2, 0)
+
+
+@pytest.hookimpl(tryfirst=True, optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``-n N`` hands the tests out by work stealing (pytest-xdist's ``--dist worksteal``) rather
+    than in fixed runs (``load``): each worker starts on its half of the ordered tests, and one
+    that runs out takes half of what the other has queued, so that neither idles while the
+    other still has a queue (with ``load``, a run of long tests handed out late kept one
+    worker busy 27 s after the other had finished)."""
+    if config.getvalue("dist") != "load":
+        return None
+    from xdist.scheduler import WorkStealingScheduling
+
+    return WorkStealingScheduling(config, log)
 
 
 def pytest_collection_modifyitems(config, items):
