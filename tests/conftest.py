@@ -179,6 +179,8 @@ AHEAD = (
      "test_plan_solver", "opensees_3d_twin", ("ff6",)),
     ("test_plan_solver.py::test_against_the_opensees_twin_in_3d[ff1]",
      "test_plan_solver", "opensees_3d_twin", ("ff1",)),
+    ("test_plan_solver.py::test_against_the_opensees_twin_in_3d[ff1-5.3s]",
+     "test_plan_solver", "opensees_3d_twin", ("ff1-5.3s",)),
     ("test_opensees_plan_walls.py::test_1d_twin_of_a_modal_wall_matches_femoat",
      "test_opensees_plan_walls", "opensees_modal_1d_twin", ()),
     ("test_bearing_runs.py::test_a_plan_run_matches_its_opensees_twin[tfp]",
