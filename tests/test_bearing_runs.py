@@ -12,7 +12,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from conftest import opensees_or_skip
+from conftest import ahead, opensees_or_skip
 from femoat.bearings import registry
 from femoat.bearings.lead_rubber import LeadRubberBearing
 from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
@@ -113,6 +113,40 @@ def test_a_bearing_capacity_is_a_collapse_criterion():
 
 
 # ---- against the OpenSees twins ---------------------------------------------------------------
+# Each twin is OpenSees alone, a function of the bearing's key: a parallel session computes it
+# ahead (conftest.py, AHEAD).
+
+
+def opensees_1d_twin(key):
+    """The peaks of the 1D test's twin: the lead-rubber twin is 1D; OpenSees'
+    TripleFrictionPendulum is a 3D element only, so the triple pendulum's 1D twin is its 3D
+    twin driven along x, y at rest (the plan model along x is this model: asserted), walls on
+    ±x."""
+    from femoat.opensees.building import opensees_run
+    from femoat.opensees.plan import opensees_plan_run
+
+    model = _model_on(BEARINGS[key])
+    m = _first(paper_motion(), 10.0)
+    if hasattr(registry.by_key(key), "opensees_axis_material"):
+        return opensees_run(model, m, 2e-4)["peaks"]
+    zero = GroundMotion(0.0 * m.accel_g, m.dt, name="zero")
+    return opensees_plan_run(_along_x(model), RecordPair(m, zero), 2e-4, tol=1e-8)["peaks"]
+
+
+def _plan_case(key):
+    """(pair, model) of the plan test: the Erzincan record along x and its reversed copy at 0.6
+    along y, turned by 30°, first 8 s; the paper building in plan on the bearing."""
+    m = _first(paper_motion(), 8.0)
+    pair = RecordPair(m, GroundMotion(-0.6 * m.accel_g[::-1], m.dt, name="y"), angle=30.0)
+    return pair, PlanModel(building=PlanBuilding(isolator=registry.by_key(key).PLAN_CLASS()))
+
+
+def opensees_plan_twin(key):
+    """The peaks of the plan test's 3D twin at 2e-4 s."""
+    from femoat.opensees.plan import opensees_plan_run
+
+    pair, model = _plan_case(key)
+    return opensees_plan_run(model, pair, 2e-4, tol=1e-8)["peaks"]
 
 
 @pytest.mark.opensees
@@ -126,22 +160,16 @@ def test_a_1d_run_matches_its_opensees_twin(key):
     # element only, so the triple pendulum's 1D twin is its 3D twin driven along x, y at rest
     # (the plan model along x is this model: asserted), walls on ±x.
     opensees_or_skip()
-    from femoat.opensees.building import opensees_run
-    from femoat.opensees.plan import opensees_plan_run
-
     model = _model_on(BEARINGS[key])
     m = _first(paper_motion(), 10.0)
     ours = run(model, m)
     assert ours.peaks["impacts_pos"] + ours.peaks["impacts_neg"] > 0
+    twin = ahead(opensees_1d_twin, key)
     if hasattr(registry.by_key(key), "opensees_axis_material"):
-        twin = opensees_run(model, m, 2e-4)["peaks"]
         assert (twin["impacts_pos"], twin["impacts_neg"]) == (ours.peaks["impacts_pos"],
                                                               ours.peaks["impacts_neg"])
         np.testing.assert_allclose(_peaks_1d(ours.peaks), _peaks_1d(twin), rtol=1e-3)
         return
-    plan_model = _along_x(model)
-    zero = GroundMotion(0.0 * m.accel_g, m.dt, name="zero")
-    twin = opensees_plan_run(plan_model, RecordPair(m, zero), 2e-4, tol=1e-8)["peaks"]
     assert list(twin["impacts"]) == [ours.peaks["impacts_pos"], ours.peaks["impacts_neg"]]
     np.testing.assert_allclose(
         [ours.peaks["peak_base_displacement"], ours.peaks["peak_impact_force_pos"],
@@ -159,23 +187,19 @@ def test_a_plan_run_matches_its_opensees_twin(key):
     # whole record, 2e-4 at 1e-4 s: measured) within 1e-3 on every peak, the same impacts on
     # every wall.
     opensees_or_skip()
-    from femoat.opensees.plan import opensees_plan_run
-
-    m = _first(paper_motion(), 8.0)
-    pair = RecordPair(m, GroundMotion(-0.6 * m.accel_g[::-1], m.dt, name="y"), angle=30.0)
-    model = PlanModel(building=PlanBuilding(isolator=registry.by_key(key).PLAN_CLASS()))
+    pair, model = _plan_case(key)
     # (the triple pendulum's plan trial follows the step's path in 4 pieces, each a return:
     # 3.8e-4 off converged femoat at the default on this pair, 1.2e-3 with one chord return)
     ours = run(model, pair)
-    twin = opensees_plan_run(model, pair, 2e-4, tol=1e-8)
+    twin = ahead(opensees_plan_twin, key)
     sides = [w.side for w in model.walls]
     tags = {"+x": "px", "-x": "mx", "+y": "py", "-y": "my"}
-    assert list(twin["peaks"]["impacts"]) == [ours.peaks[f"impacts_{tags[s]}"] for s in sides]
-    assert sum(twin["peaks"]["impacts"]) > 0
+    assert list(twin["impacts"]) == [ours.peaks[f"impacts_{tags[s]}"] for s in sides]
+    assert sum(twin["impacts"]) > 0
     ours_v = [ours.peaks["peak_plan_base_displacement"],
               *[ours.peaks[f"peak_impact_force_{tags[s]}"] for s in sides],
               *ours.peaks["peak_drift_x"], *ours.peaks["peak_drift_y"]]
-    d = np.asarray(twin["peaks"]["drift"])
-    twin_v = [twin["peaks"]["plan_base_displacement"], *twin["peaks"]["impact_force"],
+    d = np.asarray(twin["drift"])
+    twin_v = [twin["plan_base_displacement"], *twin["impact_force"],
               *d[:, 0], *d[:, 1]]
     np.testing.assert_allclose(ours_v, twin_v, rtol=1e-3)

@@ -102,8 +102,25 @@ def synthetic_ida():
     return pd.DataFrame(rows)
 
 
-def test_ida_report_numbers_equal_closed_forms(tmp_path):
-    paths = write_report(synthetic_ida(), META, tmp_path)
+@pytest.fixture(scope="module")
+def ida_report(tmp_path_factory):
+    """(folder, written paths) of the synthetic IDA's report with META (written once)."""
+    folder = tmp_path_factory.mktemp("ida_report")
+    return folder, write_report(synthetic_ida(), META, folder)
+
+
+@pytest.fixture
+def no_figures(monkeypatch):
+    """The report without its figures, for the tests reading its tables and README only: a
+    report's figures take two thirds of its time, and those of the synthetic IDA are drawn and
+    checked by test_ida_report_numbers_equal_closed_forms (the same table)."""
+    from femoat.suite import report_figures
+
+    monkeypatch.setattr(report_figures, "write_figures", lambda *args, **kwargs: [])
+
+
+def test_ida_report_numbers_equal_closed_forms(ida_report):
+    tmp_path, paths = ida_report
     s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
     ssf = np.exp(0.14 * 7**0.42 * 1.5)  # Dmax, far-field, T = 1.5 s, μT = 8
     for law, theta in THETAS.items():
@@ -193,7 +210,7 @@ def test_stripes_report_and_degenerate_variation(tmp_path):
     assert (d / "report" / "fragility.png").stat().st_size > 5000
 
 
-def test_the_report_reads_the_folder_through_load_table(tmp_path):
+def test_the_report_reads_the_folder_through_load_table(tmp_path, no_figures):
     # a task whose rows were stored twice (an interrupted task rerun: two parts with the same
     # runs), parts in any order: the report counts each run once and sees them in run_id
     # order, as load_table gives them
@@ -212,8 +229,8 @@ def test_the_report_reads_the_folder_through_load_table(tmp_path):
     pd.testing.assert_frame_equal(twice, once)
 
 
-def test_ida_levels_carry_collapsed_records_forward(tmp_path):
-    write_report(synthetic_ida(), META, tmp_path)
+def test_ida_levels_carry_collapsed_records_forward(ida_report):
+    tmp_path, _ = ida_report
     resp = pd.read_csv(tmp_path / "response_by_variation.csv")
     h = resp[resp["walls.law"] == "H"]
     # the off-grid collapse intensities are single-record levels, not tabulated
@@ -274,7 +291,8 @@ def _summary(tmp_path, meta, **options):
     return pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
 
 
-def test_mu_t_ratings_and_sdc_from_the_suite_file_move_the_margin_as_fema_p695_says(tmp_path):
+def test_mu_t_ratings_and_sdc_from_the_suite_file_move_the_margin_as_fema_p695_says(tmp_path,
+                                                                                    no_figures):
     # E: Ŝ_CT = 1.0 g, H: 1.5 g; Dmax at T = 1.5 s: S_MT = S_M1/T = 0.9/1.5 = 0.6 g, so
     # CMR(E) = 1.667, CMR(H) = 2.5.
     # μT = 1 (an elastic system): β1 = 0.14·(μT − 1)^0.42 = 0 so SSF = 1 (Table 7-1b, first
@@ -313,7 +331,7 @@ def test_mu_t_ratings_and_sdc_from_the_suite_file_move_the_margin_as_fema_p695_s
     assert "beta_TOT = 0.6 (suite file [p695] beta_total (given directly))" in readme
 
 
-def test_report_options_override_the_suite_file_and_say_so(tmp_path):
+def test_report_options_override_the_suite_file_and_say_so(tmp_path, no_figures):
     # the suite file says μT = 8 (SSF 1.609); the option μT = 1 gives SSF = 1 and β_TOT = 0.4,
     # and a rating given beside the file's β_TOT replaces it: (C, B, B) at μT = 1:
     # √(0.2² + 0.35² + 2·0.2²) = √0.2425 = 0.4924 → 0.500 (Table 7-2, rounded to 0.025)
