@@ -22,9 +22,10 @@ for every run: :func:`femoat.integration.driver.run_chunk` takes one of each).
   the coupled-friction step the plan bearings that carry their friction state ``b_rate`` (flag
   per bearing: the width of its state, 0 when not carried; cleared before every step attempt
   and at the commit), that state at the current stage ``bz`` (nb, nq) and its stage rates ``kz``
-  (stages, nb, nq), nq the registry's ``rate_width()``, and scratch for a stage's solve and the
-  kink and turn searches ``rz``, ``rg``, ``rw``, ``rv`` (nq,), ``rJ`` (nq, nq), ``rA`` (nq,
-  nq + 1)).
+  (stages, nb, nq), nq the registry's ``rate_width()``, and one scratch array ``rq``
+  (4 + 2·nq, nq + 1) for a stage's solve and the kink and turn searches, read through
+  :func:`rate_scratch` (one array: every array in the bundle is passed field by field to each
+  compiled function that takes the bundle, and six small ones cost the plan step ~20 %)).
 * :class:`Recorder`: the history buffers of :mod:`~femoat.integration.recording.channels` (one
   row per recorded sample; sample k in row k modulo their length: a ring of
   ``recorder.RING_ROWS`` rows when the run keeps no history; a channel with zero columns is not
@@ -34,6 +35,8 @@ Units: kip, in, s.
 """
 
 from collections import namedtuple
+
+from femoat.compilation.jit import njit
 
 from femoat.integration.recording.channels import BUFFERS
 
@@ -83,6 +86,14 @@ Settings = namedtuple("Settings", [
 Work = namedtuple("Work", ["u", "v", "a", "F", "KT", "CT", "A", "b", "ef", "ed", "bf", "cf",
                            "cd", "cft", "ag1", "ag_stage", "k22",
                            "kv", "ka", "eu", "ev", "de", "wexp", "wexp_h",
-                           "wscratch", "s_tmp", "b_rate", "bz", "kz", "rz", "rg", "rw", "rv",
-                           "rJ", "rA"])
+                           "wscratch", "s_tmp", "b_rate", "bz", "kz", "rq"])
 Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])
+
+
+@njit(cache=True, inline="always")
+def rate_scratch(work):
+    """(z0, g, w, v, J, A): views of ``work.rq``, four vectors of at least nq entries, J (nq,
+    nq + 1: a kind uses its first nq columns) and A (nq, nq + 1)."""
+    rq = work.rq
+    nq = rq.shape[1] - 1
+    return rq[0], rq[1], rq[2], rq[3], rq[4:4 + nq], rq[4 + nq:4 + 2 * nq]

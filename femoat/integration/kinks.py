@@ -14,6 +14,7 @@ from femoat.bearings.dispatch import (
     bearing_plan_turn_direction,
 )
 from femoat.compilation.jit import njit
+from femoat.integration.bundles import rate_scratch
 from femoat.integration.interpolants import crossing, hermite
 from femoat.structure.materials.kernels import material_commit, material_trial
 
@@ -63,7 +64,7 @@ def _off_line(e, model, state, work):
     without a rate form: always)."""
     ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
     dx, dy = work.u[ix] - state.u[ix], work.u[iy] - state.u[iy]
-    z = work.rz
+    z, _, _, _, _, _ = rate_scratch(work)
     if bearing_plan_rate_state(model.b_kind[e], model.b_P[e], state.b_S[e], z) == 0:
         return True
     zx, zy = z[0], z[1]
@@ -130,9 +131,10 @@ def _bearing_kink(e, hh, model, state, work, fine):
         KINK_BISECTIONS
     if work.b_rate[e] != 0:
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        z0, g0, g1, zt, J, _ = rate_scratch(work)
         return _carried_kink(kind, p, s, hh, state.u[ix], state.u[iy], state.v[ix], state.v[iy],
-                             work.u[ix], work.u[iy], work.v[ix], work.v[iy], work.bz[e],
-                             work.rz, work.rg, work.rw, work.rv, work.rJ, bisections)
+                             work.u[ix], work.u[iy], work.v[ix], work.v[iy], work.bz[e], z0, g0,
+                             g1, zt, J, bisections)
     lo, hi = 2.0 ** -bisections, 1.0
     ux, uy = _bearing_path(e, lo, hh, model, state, work)
     branch0 = bearing_plan_branch(kind, p, s, ux, uy)
@@ -186,10 +188,11 @@ def _bearing_turn(e, hh, model, state, work, fine):
     dr0 = zx * state.a[ix] + zy * state.a[iy]
     moved = False
     if work.b_rate[e]:
+        z0, g, _, _, J, _ = rate_scratch(work)
         r0, dr0, r1, dr1, moved = _carried_turn(
             kind, model.b_P[e], state.b_S[e], state.u[ix], state.u[iy], v0x, v0y, state.a[ix],
             state.a[iy], work.u[ix], work.u[iy], v1x, v1y, work.a[ix], work.a[iy], work.bz[e],
-            work.rz, work.rg, work.rJ)
+            z0, g, J)
     else:
         r1 = zx * v1x + zy * v1y
         dr1 = zx * work.a[ix] + zy * work.a[iy]

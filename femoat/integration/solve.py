@@ -314,9 +314,8 @@ def _bundles(packed, ag, u, v, settings):
                 ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]), b_rate=np.zeros(nb, dtype=np.int64),
-                bz=np.zeros((nb, nq)), kz=np.zeros((N_STAGES, nb, nq)), rz=np.zeros(nq),
-                rg=np.zeros(nq), rw=np.zeros(nq), rv=np.zeros(nq), rJ=np.zeros((nq, nq)),
-                rA=np.zeros((nq, nq + 1)))
+                bz=np.zeros((nb, nq)), kz=np.zeros((N_STAGES, nb, nq)),
+                rq=np.zeros((4 + 2 * nq, nq + 1)))
     return model, state, work
 
 

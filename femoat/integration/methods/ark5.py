@@ -51,6 +51,7 @@ from femoat.bearings.dispatch import (
     bearing_plan_rate_state,
 )
 from femoat.compilation.jit import njit
+from femoat.integration.bundles import rate_scratch
 from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.forces import _internal_force, trial_outputs
 from femoat.integration.methods import dp5
@@ -152,7 +153,7 @@ def _flag_carried(model, state, work):
     flagged = False
     still = True
     u, v, a = state.u, state.v, state.a
-    g, J = work.rg, work.rJ
+    _, g, _, _, J, _ = rate_scratch(work)
     for e in range(model.b_dofs.shape[0]):
         kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
@@ -178,7 +179,7 @@ def _rates_vanish(n_stages, model, state, work):
     """Whether every carried state's rate at its (constant) value is exactly zero at each of
     the ``n_stages`` stage velocities in ``work.kv`` (at the step's end displacement): the
     step never moved it."""
-    g, J = work.rg, work.rJ
+    _, g, _, _, J, _ = rate_scratch(work)
     for e in range(model.b_dofs.shape[0]):
         nq = work.b_rate[e]
         if nq == 0:
@@ -197,7 +198,7 @@ def _rates_vanish(n_stages, model, state, work):
 @njit(cache=True, inline="always")
 def _stage_rates(st, model, state, work):
     """g_s = g(Z_s; U_s, V_s) of each carried state into ``work.kz[st]``."""
-    g, J = work.rg, work.rJ
+    _, g, _, _, J, _ = rate_scratch(work)
     for e in range(model.b_dofs.shape[0]):
         nq = work.b_rate[e]
         if nq == 0:
@@ -215,7 +216,7 @@ def _solve_stage_states(st, hh, model, state, work):
     a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``work.bz``). False when
     one does not converge (the step is then retried shorter)."""
     hg = hh * ARK_AI[st, st]
-    g, J, w, z0 = work.rg, work.rJ, work.rw, work.rz
+    z0, g, w, _, J, A = rate_scratch(work)
     for e in range(model.b_dofs.shape[0]):
         nq = work.b_rate[e]
         if nq == 0:
@@ -247,7 +248,7 @@ def _solve_stage_states(st, hh, model, state, work):
                 z[1] -= dy
                 step = abs(dx) + abs(dy)
             else:
-                if not _newton_update(nq, hg, z, w, g, J, work.rA):
+                if not _newton_update(nq, hg, z, w, g, J, A):
                     return False
                 step = 0.0
                 for q in range(nq):
@@ -298,7 +299,7 @@ def _friction_force_error(hh, model, state, work):
     """Add each carried state's error e_z = h·Σ (b − b̂)_s·g_s, as the force f(z) − f(z − e_z)
     at the step's end, to the force error ``work.b`` (after :func:`dp5.force_error`)."""
     f2, kb, cb = work.k22[2, 0], work.k22[0], work.k22[1]
-    zc = work.rw
+    _, _, zc, _, _, _ = rate_scratch(work)
     for e in range(model.b_dofs.shape[0]):
         nq = work.b_rate[e]
         if nq == 0:
