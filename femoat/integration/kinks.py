@@ -130,8 +130,15 @@ def _bearing_kink(e, hh, model, state, work, fine):
     bisections = FINE_BISECTIONS if fine and _off_line(e, model, state, work) else \
         KINK_BISECTIONS
     if work.b_rate[e] != 0:
+        # (a branch that is the same a resolution into the step, z still the committed one, and
+        # at the end is the answer of most steps: the search's own call only when it differs)
         ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
         z0, g0, g1, zt, J, _ = rate_scratch(work)
+        bearing_plan_rate_state(kind, p, s, z0)
+        ux, uy = _bearing_path(e, 2.0 ** -bisections, hh, model, state, work)
+        if bearing_plan_rate_branch(kind, p, s, ux, uy, z0) == bearing_plan_rate_branch(
+                kind, p, s, work.u[ix], work.u[iy], work.bz[e]):
+            return 2.0
         return _carried_kink(kind, p, s, hh, state.u[ix], state.u[iy], state.v[ix], state.v[iy],
                              work.u[ix], work.u[iy], work.v[ix], work.v[iy], work.bz[e], z0, g0,
                              g1, zt, J, bisections)
