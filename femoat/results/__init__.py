@@ -2,7 +2,8 @@
 
 This package holds both results: :class:`RunResult` here (a run along one axis) and
 :class:`~femoat.results.plan.PlanRunResult` (a run in plan), one layer above the solver whose
-recording layer they read.
+recording layer they read; what they share (impacts, peaks, energy, collapse, runaway, the
+per-axis and wall histories, save and load) is :class:`femoat.results.base.Result`.
 
 Files are NumPy ``.npz`` archives: every array is stored under a descriptive name, and a JSON
 document (``meta``) holds the units of each array, the DOF/element/contact names, the impact
@@ -11,21 +12,12 @@ the core free of xarray/netCDF4 (heavy, and not needed elsewhere), while staying
 ``numpy.load`` reads it anywhere and ``meta`` says what each array is.
 """
 
-import json
-
 import numpy as np
 
-from femoat.atomic import atomic_path
 from femoat.contact._dispatch import acts_at_zero
-from femoat.dense_peaks import (
-    hermite_abs_max,
-    linear_accel_velocity_abs_max,
-    parabolic_peak,
-    quintic_accel_abs_max,
-    smooth_intervals,
-)
-from femoat.integration.methods import QUINTIC_METHODS
+from femoat.dense_peaks import linear_accel_velocity_abs_max
 from femoat.integration.recording.channels import CHANNELS, UNITS
+from femoat.results.base import Result
 from femoat.structure.roles import STORY, role_of
 from femoat.units import G
 
@@ -33,11 +25,15 @@ ARRAY_UNITS = UNITS
 """{history: unit} (:mod:`femoat.integration.recording.channels`), carried in every file."""
 
 
-class RunResult:
-    """A building run: its histories, one attribute per channel of
+class RunResult(Result):
+    """A building run along x: its histories, one attribute per channel of
     :mod:`femoat.integration.recording.channels` (``time`` [s], ``displacement`` [in], ...;
     one row per recorded sample, none when the run kept no history), and ``meta`` (names,
-    impacts, peaks, energies, solver statistics). Units in brackets on each accessor."""
+    impacts, peaks, energies, solver statistics). Units in brackets on each accessor; the
+    per-axis accessors of :class:`~femoat.results.base.Result` take ``axis="x"`` or nothing."""
+
+    AXES = ("x",)
+    ARRAY_NAMES = tuple(c.name for c in CHANNELS)
 
     def __init__(self, arrays, meta=None):
         missing = [c.name for c in CHANNELS if c.name not in arrays]
@@ -79,34 +75,28 @@ class RunResult:
         r.meta["peaks"] = r._peaks(hist.peaks)
         return r
 
-    # ---- derived channels ----------------------------------------------------------------
-    @property
-    def n_floors(self):
-        return self.meta["n_struct"] - 1
+    # ---- the layout (femoat.results.base) -------------------------------------------------
+    def _array(self, name):
+        return self.arrays[name]
 
+    @classmethod
+    def _from_file(cls, arrays, meta):
+        return cls(arrays, meta)
+
+    def _cols(self, axis):
+        return list(range(self.meta["n_struct"]))
+
+    def _ground(self, axis):
+        return self.ground_acceleration
+
+    def _side(self, side):
+        return {"pos": "pos", "+": "pos", 1: "pos", "neg": "neg", "-": "neg", -1: "neg"}[side]
+
+    # ---- derived channels ----------------------------------------------------------------
     @property
     def base_displacement(self):
         """Base-mat displacement relative to the ground [in]."""
         return self.displacement[:, 0]
-
-    def _require(self, name):
-        if self.time.size == 0:
-            raise ValueError("the run kept no history (history=False): its peaks and impacts "
-                             "are in result.peaks and result.impacts; run with history=True "
-                             "for its histories.")
-        if getattr(self, name).shape[1] == 0:
-            raise ValueError(f"the {name} channel was not recorded: run with it in channels.")
-
-    def absolute_acceleration(self):
-        """Absolute accelerations of base mat and floors [in/s²] (columns: base, floor1...)."""
-        self._require("acceleration")
-        ns = self.meta["n_struct"]
-        return self.acceleration[:, :ns] + self.ground_acceleration[:, None]
-
-    def story_drifts(self):
-        """Interstory drifts u_k − u_{k−1} [in], one column per story (story 1 over the base)."""
-        u = self.displacement[:, : self.meta["n_struct"]]
-        return np.diff(u, axis=1)
 
     def story_shears(self):
         """Story shear: spring force plus parallel dashpot force [kip], one column per story."""
@@ -120,92 +110,7 @@ class RunResult:
         dash = np.array([self.meta["element_dashpots"][i] for i in cols])
         return self.element_force[:, cols] + drift_rate * dash[None, :]
 
-    def wall_displacement(self, side=None):
-        """Wall displacement at the impact point, away from the building [in], per contact."""
-        out = np.zeros((self.time.size, len(self.meta["walls"])))
-        for c, w in enumerate(self.meta["walls"]):
-            for col, phi in zip(w["cols"], w["phi"]):
-                out[:, c] += phi * self.displacement[:, col]
-        return out if side is None else out[:, self._contact_index(side)]
-
-    def wall_force(self):
-        """Force in the wall's spring and dashpot [kip] (Σ over modes of k·q + c·q̇, weighted
-        by the impact-point shape), per contact: the 'vibrational spring' of Fig. 7."""
-        self._require("velocity")
-        out = np.zeros((self.time.size, len(self.meta["walls"])))
-        for c, w in enumerate(self.meta["walls"]):
-            for col, phi, k, cc in zip(w["cols"], w["phi"], w["k"], w["c"]):
-                out[:, c] += (k * self.displacement[:, col] + cc * self.velocity[:, col]) / phi
-        return out
-
-    def _contact_index(self, side):
-        key = {"pos": "pos", "+": "pos", 1: "pos", "neg": "neg", "-": "neg", -1: "neg"}[side]
-        return self.meta["contact_names"].index(key)
-
     # ---- impacts and peaks ---------------------------------------------------------------
-    def _impact_table(self):
-        """The impact table read from the recorded history (the solver keeps the same table
-        sample by sample, :mod:`femoat.integration.recording.episodes`: this is its reference)."""
-        rows = []
-        t = self.time
-        for c, name in enumerate(self.meta["contact_names"]):
-            closed = self.contact_closed[:, c].astype(bool)
-            f = self.contact_force[:, c]
-            starts = np.flatnonzero(closed & ~np.r_[False, closed[:-1]])
-            # first sample after each closed run (the located separation), or the last sample
-            ends = np.minimum(np.flatnonzero(closed & ~np.r_[closed[1:], False]) + 1, t.size - 1)
-            for s, e in zip(starts, ends):
-                seg = slice(s, e + 1)
-                fs = f[seg]
-                k = s + int(np.argmax(fs))
-                # the episode ends at separation (δ back to 0, a located event) or earlier where
-                # a tension-free law's force has fallen to zero
-                zero = np.flatnonzero(f[k:e + 1] <= 0.0)
-                last = k + zero[0] if zero.size else e
-                rows.append(dict(
-                    side=name,
-                    start=float(t[s]),
-                    duration=float(t[last] - t[s]),
-                    approach_velocity=float(self.indentation_rate[s, c]),
-                    peak_force=float(parabolic_peak(t, f, k)),
-                    max_indentation=float(self.indentation[seg, c].max()),
-                    impulse=float(np.trapezoid(fs, t[seg])),
-                ))
-        rows.sort(key=lambda r: r["start"])
-        return rows
-
-    def _continuous_peaks(self, x, v):
-        """max |x| over the run per column, inside the steps when the velocities v were
-        recorded (else at the recorded samples)."""
-        if v is None:
-            return [float(p) for p in np.abs(x).max(axis=0)] if x.size else [0.0] * x.shape[1]
-        return hermite_abs_max(self.time, x, v)
-
-    def wall_velocity(self):
-        """Wall velocity at the impact point [in/s], per contact (columns as wall_displacement)."""
-        self._require("velocity")
-        out = np.zeros((self.time.size, len(self.meta["walls"])))
-        for c, w in enumerate(self.meta["walls"]):
-            for col, phi in zip(w["cols"], w["phi"]):
-                out[:, c] += phi * self.velocity[:, col]
-        return out
-
-    def _acceleration_peaks(self, acc):
-        """Peak absolute accelerations [in/s²] of the base mat and the floors: inside the open
-        phase's smooth steps when they came from the fifth-order step (quintic interpolant of
-        u, v, a), else at the recorded samples (a Newmark step's acceleration is linear)."""
-        if acc is None:
-            return None
-        ns = self.meta["n_struct"]
-        info = self.meta.get("info", {})
-        if info.get("method") not in QUINTIC_METHODS or self.velocity.shape[1] == 0:
-            return [float(x) for x in np.abs(acc).max(axis=0)]
-        smooth = smooth_intervals(self.contact_closed.reshape(self.time.size, -1),
-                                  [w.get("closes_smoothly", False) for w in self.meta["walls"]])
-        return quintic_accel_abs_max(self.time, self.displacement[:, :ns],
-                                     self.velocity[:, :ns], self.acceleration[:, :ns],
-                                     self.ground_acceleration, smooth)
-
     def _continuous(self, kernel):
         """(base displacement, drifts, walls, absolute accelerations or None, base velocity or
         None, indentation): from the solver's running peaks (``kernel``, the layout of
@@ -216,26 +121,26 @@ class RunResult:
             return (kernel[0], kernel[1:ns], kernel[ns:ns + nc], kernel[ns + nc:2 * ns + nc],
                     kernel[2 * ns + nc], kernel[2 * ns + nc + 1])
         wall = self.wall_displacement()
-        acc = self.absolute_acceleration() if self.acceleration.shape[1] else None
         has_v = self.velocity.shape[1] > 0
         vel = self.velocity[:, :ns] if has_v else None
         drift_v = np.diff(vel, axis=1) if has_v else None
         wall_v = self.wall_velocity() if has_v else None
-        base = self._continuous_peaks(self.displacement[:, :1],
-                                      None if vel is None else vel[:, :1])[0]
+        base = self._hermite_peaks(self.displacement[:, :1],
+                                   None if vel is None else vel[:, :1])[0]
         velocity = (linear_accel_velocity_abs_max(self.time, vel[:, 0], self.acceleration[:, 0])
                     if has_v and self.acceleration.shape[1] else None)
         indentation = float(max(0.0, self.indentation.max())) if self.indentation.size else 0.0
-        return (base, self._continuous_peaks(self.story_drifts(), drift_v),
-                self._continuous_peaks(wall, wall_v), self._acceleration_peaks(acc), velocity,
+        return (base, self._hermite_peaks(self.story_drifts(), drift_v),
+                self._hermite_peaks(wall, wall_v),
+                self._acceleration_peaks() if self.acceleration.shape[1] else None, velocity,
                 indentation)
 
     def _peaks(self, kernel=None):
         """Peaks of the continuous solution: displacements and drifts inside each step from the
         Hermite interpolant; accelerations at the step ends, and inside the fifth-order steps
         from the quintic interpolant. ``kernel``: the solver's own running peaks
-        (:mod:`femoat.integration.recording.peaks`, the same interpolants sample by sample), else they are
-        read from the recorded history (:mod:`femoat.dense_peaks`)."""
+        (:mod:`femoat.integration.recording.peaks`, the same interpolants sample by sample),
+        else they are read from the recorded history (:mod:`femoat.dense_peaks`)."""
         imp = self.meta["impacts"]
         base, peak_drift, peak_wall, peak_acc, velocity, indentation = self._continuous(kernel)
         if self.acceleration.shape[1] == 0:
@@ -264,55 +169,6 @@ class RunResult:
             "steps": self.meta["stats"]["steps"],
         }
         return out
-
-    @property
-    def impacts(self):
-        """The impact table: one dict per contact episode (side, start [s], duration [s],
-        approach_velocity [in/s], peak_force [kip], max_indentation [in], impulse [kip·s])."""
-        return self.meta["impacts"]
-
-    @property
-    def peaks(self):
-        """Peak summary (JSON-ready)."""
-        return self.meta["peaks"]
-
-    @property
-    def collapse(self):
-        """Collapse criteria reached (:func:`femoat.collapse.collapse_summary`): the first
-        time [s] of each (None: not reached), ``collapsed`` and ``stopped``; None when the run
-        checked no criteria."""
-        return self.meta.get("collapse")
-
-    @property
-    def runaway(self):
-        """None, or the runaway bound that ended the run (:func:`femoat.collapse.runaway_summary`:
-        ``time`` [s], ``element``, ``bound`` [in], ``reason``): the structure had collapsed and
-        its response beyond the bound means nothing, so the run stopped there."""
-        return self.meta.get("runaway")
-
-    @property
-    def energy(self):
-        """Energy balance [kip·in] and its relative residual."""
-        return self.meta["energy"]
-
-    # ---- persistence ---------------------------------------------------------------------
-    def save(self, path):
-        """Write to ``path`` (.npz), atomically: every channel under its name, and ``meta``."""
-        with atomic_path(path) as tmp:
-            with open(tmp, "wb") as fh:
-                np.savez_compressed(fh, meta=np.array(json.dumps(self.meta)), **self.arrays)
-
-    @classmethod
-    def load(cls, path):
-        """Read a file written by :meth:`save`."""
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                meta = json.loads(str(z["meta"]))
-                arrays = {c.name: z[c.name] for c in CHANNELS}
-        except (OSError, KeyError, ValueError) as exc:
-            raise ValueError(f"{path}: not a femoat result file ({exc}).") from None
-        return cls(arrays, meta)
-
 
 
 def _channel(name, unit):

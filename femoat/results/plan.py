@@ -24,18 +24,15 @@ higher layer than results: tests/test_imports.py). Files: ``.npz`` with a JSON `
 :class:`femoat.results.RunResult` (a run without history too: its arrays have no rows).
 """
 
-import json
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from femoat.atomic import atomic_path
 from femoat.contact._dispatch import acts_at_zero
-from femoat.dense_peaks import hermite_abs_max, quintic_accel_abs_max, smooth_intervals
-from femoat.integration.methods import QUINTIC_METHODS
 from femoat.integration.recording import peaks as running_layout
 from femoat.plan.building import AXES
 from femoat.plan.moat import SIDES, wall_side
+from femoat.results.base import Result, impact_table
 from femoat.units import G
 
 SIDE_KEYS = {"+x": "px", "-x": "mx", "+y": "py", "-y": "my"}
@@ -119,8 +116,13 @@ def _axis(axis):
 
 
 @dataclass
-class PlanRunResult:
-    """A plan run (units in brackets on each accessor; arrays as :data:`ARRAY_UNITS`)."""
+class PlanRunResult(Result):
+    """A plan run (units in brackets on each accessor; arrays as :data:`ARRAY_UNITS`; the
+    per-axis accessors of :class:`~femoat.results.base.Result` take the axis, "x" or "y")."""
+
+    AXES = AXES
+    ARRAY_NAMES = tuple(ARRAY_UNITS)
+    FILE_KIND = "femoat plan result file"
 
     time: np.ndarray
     displacement: np.ndarray
@@ -208,8 +210,6 @@ class PlanRunResult:
         table is read from the history (contact while the indentation is > 0, as the twin
         counts); the energy residual is None (no balance).
         """
-        from femoat.results import RunResult
-
         packed = model.pack()
         lay, sides = packed.layout, [w.side for w in model.walls]
         if list(result["walls"]) != sides:
@@ -237,51 +237,43 @@ class PlanRunResult:
         force = np.asarray(result["contact_force"], dtype=float)
         rate = v @ packed.c_B.T
         empty = np.zeros((m, 0))
-        reference = RunResult(dict(time=t, displacement=empty, velocity=empty,
-                                   acceleration=empty, ground_acceleration=ag[:, 0],
-                                   element_force=empty, element_deformation=empty,
-                                   contact_force=force, indentation=indentation,
-                                   indentation_rate=rate, contact_closed=closed),
-                              meta={"contact_names": sides})
         arrays = dict(time=t, displacement=u, velocity=v, acceleration=a, ground_acceleration=ag,
                       element_force=empty, element_deformation=el_top - el_bottom,
                       bearing_force=empty, contact_force=force, indentation=indentation,
                       indentation_rate=rate, contact_closed=closed)
-        meta = dict(impacts=reference._impact_table(),
+        meta = dict(impacts=impact_table(t, closed, force, indentation, rate, sides),
                     stats=dict(steps=int(result["steps"]),
                                cpu_seconds=float(result["cpu_seconds"])),
                     energy=dict(residual=None),
                     info=dict(solver="opensees", method="newmark", dt=dt))
         return cls.from_arrays(arrays, packed, meta)
 
-    # ---- derived channels ----------------------------------------------------------------
-    @property
-    def n_floors(self):
-        """Number of floors above the base mat."""
-        return len(self.meta["floor_dofs"]) - 1
+    # ---- the layout (femoat.results.base) -------------------------------------------------
+    def _array(self, name):
+        return getattr(self, name)
 
+    @classmethod
+    def _from_file(cls, arrays, meta):
+        return cls(**arrays, meta=meta)
+
+    def _cols(self, axis):
+        return [row[_axis(axis)] for row in self.meta["floor_dofs"]]
+
+    def _ground(self, axis):
+        return self.ground_acceleration[:, _axis(axis)]
+
+    def _side(self, side):
+        side = wall_side(side)
+        if side not in self.sides:
+            raise ValueError(f"side = {side!r}: the moat has no wall there (its walls: "
+                             f"{', '.join(self.sides) or 'none'}).")
+        return side
+
+    # ---- derived channels ----------------------------------------------------------------
     @property
     def sides(self):
         """The walls of the moat ("+x", ...), in the order of every per-wall column."""
         return list(self.meta["contact_names"])
-
-    def _require(self, name):
-        if self.time.size == 0:
-            raise ValueError("the run kept no history (history=False): its peaks and impacts "
-                             "are in result.peaks and result.impacts; run with history=True "
-                             "for its histories.")
-        if getattr(self, name).shape[1] == 0:
-            raise ValueError(f"the {name} channel was not recorded: run with it recorded.")
-
-    def _cols(self, axis):
-        """The state vector's columns of the base mat and the floors along ``axis``."""
-        return [row[_axis(axis)] for row in self.meta["floor_dofs"]]
-
-    def floor_displacement(self, axis):
-        """Displacements of the base mat and the floors along ``axis`` ("x" or "y") relative to
-        the ground [in], columns base, floor 1, ..."""
-        self._require("displacement")
-        return self.displacement[:, self._cols(axis)]
 
     @property
     def base_displacement(self):
@@ -300,79 +292,7 @@ class PlanRunResult:
         """The base mat's plan displacement |u| = √(u_x² + u_y²) [in], shape (m,)."""
         return np.hypot(*self.base_displacement.T)
 
-    def story_drifts(self, axis):
-        """Interstory drifts along ``axis``, u_k − u_{k−1} [in], one column per story (story 1
-        over the base mat)."""
-        return np.diff(self.floor_displacement(axis), axis=1)
-
-    def absolute_acceleration(self, axis):
-        """Absolute accelerations along ``axis`` of the base mat and the floors [in/s²]
-        (columns base, floor 1, ...)."""
-        self._require("acceleration")
-        a = _axis(axis)
-        return self.acceleration[:, self._cols(axis)] + self.ground_acceleration[:, a, None]
-
-    def _wall_columns(self, values, side):
-        """Σ over a wall's modes of φ·values[:, mode] per wall, or one wall's column."""
-        self._require("displacement")
-        out = np.zeros((self.time.size, len(self.meta["walls"])))
-        for c, w in enumerate(self.meta["walls"]):
-            for col, phi in zip(w["cols"], w["phi"]):
-                out[:, c] += phi * values[:, col]
-        return out if side is None else out[:, self._wall_index(side)]
-
-    def wall_displacement(self, side=None):
-        """Wall displacement at the impact point, away from the building [in]: one column per
-        wall, or the wall ``side``'s history."""
-        return self._wall_columns(self.displacement, side)
-
-    def wall_velocity(self, side=None):
-        """Wall velocity at the impact point, away from the building [in/s] (as
-        :meth:`wall_displacement`)."""
-        self._require("velocity")
-        return self._wall_columns(self.velocity, side)
-
-    def wall_force(self, side=None):
-        """Force in the wall's spring and dashpot [kip] (Σ over modes of (k·q + c·q̇)/φ), as
-        :meth:`femoat.results.RunResult.wall_force`; the contact force is ``contact_force``."""
-        self._require("velocity")
-        out = np.zeros((self.time.size, len(self.meta["walls"])))
-        for c, w in enumerate(self.meta["walls"]):
-            for col, phi, k, cc in zip(w["cols"], w["phi"], w["k"], w["c"]):
-                out[:, c] += (k * self.displacement[:, col] + cc * self.velocity[:, col]) / phi
-        return out if side is None else out[:, self._wall_index(side)]
-
-    def _wall_index(self, side):
-        side = wall_side(side)
-        if side not in self.sides:
-            raise ValueError(f"side = {side!r}: the moat has no wall there (its walls: "
-                             f"{', '.join(self.sides) or 'none'}).")
-        return self.sides.index(side)
-
     # ---- peaks ---------------------------------------------------------------------------
-    def _hermite(self, x, v):
-        """max |x| per column inside the intervals when v is given, else at the samples."""
-        if v is None:
-            return [float(p) for p in np.abs(x).max(axis=0)] if x.shape[0] else \
-                [0.0] * x.shape[1]
-        return hermite_abs_max(self.time, x, v)
-
-    def _acceleration_peaks(self, axis):
-        """Peak absolute accelerations along ``axis`` [in/s²] of the base mat and the floors:
-        inside the smooth steps of a fifth-order run (``dp5``, ``ark5``; the intervals of
-        :func:`~femoat.dense_peaks.smooth_intervals`) from the
-        quintic interpolant of (u, v, a), else at the samples (as in 1D)."""
-        acc = self.absolute_acceleration(axis)
-        if self.meta["info"].get("method") not in QUINTIC_METHODS or self.velocity.shape[1] == 0:
-            return [float(x) for x in np.abs(acc).max(axis=0)]
-        cols = self._cols(axis)
-        return quintic_accel_abs_max(self.time, self.displacement[:, cols],
-                                     self.velocity[:, cols], self.acceleration[:, cols],
-                                     self.ground_acceleration[:, _axis(axis)],
-                                     smooth_intervals(self.contact_closed, [
-                                         w.get("closes_smoothly", False)
-                                         for w in self.meta["walls"]]))
-
     def _continuous(self, running=None):
         """The peaks of the continuous solution: {"plan": the base mat's |u| [in], "base": its
         |u_x|, |u_y| [in], "drift": {axis: per story [in]}, "acceleration": {axis: absolute,
@@ -395,17 +315,18 @@ class PlanRunResult:
         drift = {}
         for axis in AXES:
             drift_v = np.diff(self.velocity[:, self._cols(axis)], axis=1) if has_v else None
-            drift[axis] = self._hermite(self.story_drifts(axis), drift_v)
+            drift[axis] = self._hermite_peaks(self.story_drifts(axis), drift_v)
         return dict(
             plan=(hermite_norm_max(self.time, base, base_v) if has_v
                   else float(self.plan_base_displacement.max(initial=0.0))),
-            base=[self._hermite(base[:, a:a + 1],
-                                None if base_v is None else base_v[:, a:a + 1])[0]
+            base=[self._hermite_peaks(base[:, a:a + 1],
+                                      None if base_v is None else base_v[:, a:a + 1])[0]
                   for a in range(len(AXES))],
             drift=drift,
             acceleration={axis: (self._acceleration_peaks(axis) if self.acceleration.shape[1]
                                  else None) for axis in AXES},
-            wall=self._hermite(self.wall_displacement(), self.wall_velocity() if has_v else None))
+            wall=self._hermite_peaks(self.wall_displacement(),
+                                     self.wall_velocity() if has_v else None))
 
     def _peaks(self, running=None):
         """The peak summary (:attr:`peaks`), from the running peaks ``running`` when given
@@ -455,48 +376,6 @@ class PlanRunResult:
         ``peak_impact_force`` [kip], ``peak_impulse`` [kip·s], ``energy_residual`` [-],
         ``steps``, ``cpu_seconds`` [s]."""
         return self.meta["peaks"]
-
-    @property
-    def impacts(self):
-        """The impact table: one dict per contact episode (side "+x"..., start [s], duration
-        [s], approach_velocity [in/s], peak_force [kip], max_indentation [in], impulse
-        [kip·s]), by start."""
-        return self.meta["impacts"]
-
-    @property
-    def energy(self):
-        """Energy balance [kip·in] and its relative residual, as the solver gave it."""
-        return self.meta["energy"]
-
-    @property
-    def collapse(self):
-        """Collapse criteria reached (:func:`femoat.collapse.collapse_summary`), None when the
-        run checked none."""
-        return self.meta.get("collapse")
-
-    @property
-    def runaway(self):
-        """None, or the runaway bound that ended the run (:func:`femoat.collapse.runaway_summary`)."""
-        return self.meta.get("runaway")
-
-    # ---- persistence ---------------------------------------------------------------------
-    def save(self, path):
-        """Write to ``path`` (.npz), atomically."""
-        arrays = {k: getattr(self, k) for k in ARRAY_UNITS}
-        with atomic_path(path) as tmp:
-            with open(tmp, "wb") as fh:
-                np.savez_compressed(fh, meta=np.array(json.dumps(self.meta)), **arrays)
-
-    @classmethod
-    def load(cls, path):
-        """Read a file written by :meth:`save`."""
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                meta = json.loads(str(z["meta"]))
-                arrays = {k: z[k] for k in ARRAY_UNITS}
-        except (OSError, KeyError, ValueError) as exc:
-            raise ValueError(f"{path}: not a femoat plan result file ({exc}).") from None
-        return cls(**arrays, meta=meta)
 
 
 def _newmark_rate(x, rate0, h):

@@ -1,6 +1,6 @@
 """The impact table, kept inside the compiled loop as the samples are recorded.
 
-The same episodes and the same values as :meth:`femoat.results.RunResult._impact_table` reads
+The same episodes and the same values as :func:`femoat.results.base.impact_table` reads
 from a recorded history, sample by sample, so that a run that keeps no history still has its
 impact table. For each contact, an episode is a run of recorded samples with the contact closed;
 its segment reaches to the first sample after the run (the located separation) or to the last
