@@ -43,7 +43,8 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         together, turned by its angle). A plan run returns a
         :class:`~femoat.results.plan.PlanRunResult`.
     integrator : Integrator or None
-        Integration settings (default: Newmark average acceleration, rtol = 1e-5: every peak within 1e-3).
+        Integration settings (default: ``Integrator()``, the fifth-order step at rtol = 1e-5;
+        a plan run: :func:`plan_method`'s).
     extra_time : float
         Free vibration after the record [s] (default 2 s, as in the paper study).
     duration : float or None
@@ -73,26 +74,45 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
     if channels is not None and not history:
         raise ValueError("channels names the histories to record; with history=False none "
                          "is recorded: leave channels at None.")
-    if isinstance(model, PlanModel):
-        return _run_plan(model, motion, integrator, extra_time, duration, u0, v0, progress,
-                         channels, collapse, history)
-    if not isinstance(model, PoundingModel):
+    plan = isinstance(model, PlanModel)
+    if not (plan or isinstance(model, PoundingModel)):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding) or a "
                          "PlanModel (femoat.plan).")
+    if plan and not isinstance(motion, RecordPair):
+        raise ValueError("a PlanModel runs under a RecordPair (femoat.ground_motions.pair: "
+                         "fema_p695_pair, read_at2_pair or RecordPair(x, y, angle)); for one "
+                         "component, RecordPair(x, zeros) or the 1D model model.along('x').")
+    if not plan and isinstance(motion, RecordPair):
+        raise ValueError("a PoundingModel runs along x under one GroundMotion: give one "
+                         "component (pair.x), or run the pair on a femoat.plan.PlanModel "
+                         "(PlanBuilding.from_building(model.building) and a rectangular_moat).")
     if duration is None:
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
         duration = motion.duration + extra_time
-    integ = integrator or Integrator()
+    integ = integrator or (Integrator(method=plan_method(model)) if plan else Integrator())
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
-    hist = solve(packed, motion.accel, motion.dt, duration, integ, u0=u0, v0=v0,
-                 progress=progress, limits=limits, history=history,
-                 stop_at_limit=stop, **kw)
+    # the ground: one component [g] along x, or a pair's (x, y) as columns [in/s²]
+    accel = np.ascontiguousarray(motion.accel_g.T) * G if plan else motion.accel
+    hist = solve(packed, accel, motion.dt, duration, integ, u0=u0, v0=v0, progress=progress,
+                 limits=limits, history=history, stop_at_limit=stop, **kw)
+    laws = [w.law.kind for w in model.walls]
+    if plan:
+        info = dict(motion=motion.name, angle=float(motion.angle), scale=float(motion.scale),
+                    motion_dt=float(motion.dt), duration=float(duration), method=integ.method,
+                    rtol=integ.rtol, alpha=integ.alpha, laws=laws)
+        arrays = dict(hist.arrays)
+        arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))
+        meta = dict(impacts=impact_rows(hist.impacts, packed.c_names), stats=hist.stats,
+                    energy=hist.energy, info=info)
+        meta.update(_limit_summaries(limits, hist, packed, collapse))
+        return PlanRunResult.from_arrays(arrays, packed, meta,
+                                         running_peaks=None if history else hist.peaks)
     info = dict(motion=motion.name, motion_pga_g=float(motion.pga), motion_dt=float(motion.dt),
                 duration=float(duration), method=integ.method, rtol=integ.rtol, alpha=integ.alpha,
-                laws=[w.law.kind for w in model.walls],
+                laws=laws,
                 wall_damping=[getattr(w.wall, "damping_source", "modal") for w in model.walls])
     result = RunResult.from_history(hist, packed, info)
     result.meta.update(_limit_summaries(limits, hist, packed, collapse))
@@ -120,36 +140,6 @@ def plan_method(model):
     if kind is None:  # no plan bearing (an elastic isolator): ark5 is dp5 there
         return PLAN_METHOD
     return PLAN_METHOD if registry.has_rate_form(registry.kinds()[kind]) else PLAN_METHOD_PATH
-
-
-def _run_plan(model, pair, integrator, extra_time, duration, u0, v0, progress, channels,
-              collapse, history):
-    """:func:`run` for a :class:`~femoat.plan.PlanModel` under a record pair."""
-    if not isinstance(pair, RecordPair):
-        raise ValueError("a PlanModel runs under a RecordPair (femoat.ground_motions.pair: "
-                         "fema_p695_pair, read_at2_pair or RecordPair(x, y, angle)); for one "
-                         "component, RecordPair(x, zeros) or the 1D model model.along('x').")
-    if duration is None:
-        if not (math.isfinite(extra_time) and extra_time >= 0):
-            raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
-        duration = pair.duration + extra_time
-    integ = integrator or Integrator(method=plan_method(model))
-    packed = packed_model(model)
-    kw = {} if channels is None else dict(channels=tuple(channels))
-    limits, stop = _limits(model, packed, collapse)
-    hist = solve(packed, np.ascontiguousarray(pair.accel_g.T) * G, pair.dt, duration, integ,
-                 u0=u0, v0=v0, progress=progress, limits=limits,
-                 history=history, stop_at_limit=stop, **kw)
-    arrays = dict(hist.arrays)
-    arrays["bearing_force"] = np.zeros((arrays["time"].size, 0))
-    info = dict(motion=pair.name, angle=float(pair.angle), scale=float(pair.scale),
-                motion_dt=float(pair.dt), duration=float(duration), method=integ.method,
-                rtol=integ.rtol, alpha=integ.alpha, laws=[w.law.kind for w in model.walls])
-    meta = dict(impacts=impact_rows(hist.impacts, packed.c_names), stats=hist.stats,
-                energy=hist.energy, info=info)
-    meta.update(_limit_summaries(limits, hist, packed, collapse))
-    return PlanRunResult.from_arrays(arrays, packed, meta,
-                                     running_peaks=None if history else hist.peaks)
 
 
 def _limits(model, packed, collapse):

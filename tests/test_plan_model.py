@@ -249,3 +249,20 @@ def test_pack_physics():
     assert [r.kind for r in p.el_roles] == [STORY] * 6
     np.testing.assert_array_equal(p.c_friction, [0.0] * 4)
     assert p.c_names == list(SIDES)
+
+
+def test_run_names_the_motion_each_model_takes():
+    # run() is one path for both models; the motion must match the model's axes (checked before
+    # any packing or solving, so these cost nothing)
+    from femoat.ground_motions import GroundMotion, RecordPair
+    from femoat.run import run
+    from femoat.structure.pounding import PoundingModel
+
+    gm = GroundMotion(np.zeros(11), 0.01, name="rest")
+    pair = RecordPair(gm, gm)
+    with pytest.raises(ValueError, match="a PlanModel runs under a RecordPair"):
+        run(PlanModel(), gm)
+    with pytest.raises(ValueError, match="a PoundingModel runs along x under one GroundMotion"):
+        run(PoundingModel(Building()), pair)
+    with pytest.raises(ValueError, match="model must be a PoundingModel"):
+        run(Building(), gm)
