@@ -44,7 +44,7 @@ def _model_on(bearing, law="E"):
 
 def _along_x(model):
     """The plan model whose restriction to x is the 1D ``model`` (its walls on ±x)."""
-    walls = tuple(PlanWall(w.law, w.wall, w.gap, "+x" if w.side > 0 else "-x")
+    walls = tuple(PlanWall(w.law, w.wall, w.gap, w.side)
                   for w in model.walls)
     plan_model = PlanModel(building=PlanBuilding.from_building(model.building), walls=walls)
     assert plan_model.along("x") == model

@@ -16,6 +16,7 @@ from femoat.plan import (
     rectangular_moat,
 )
 from femoat.structure.building import Building
+from femoat.structure.pounding import MoatWall, PoundingModel
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum, IMKBilinear
 from femoat.structure.materials.codes import BEARING
 from femoat.structure.roles import ISOLATOR, STORY
@@ -67,8 +68,10 @@ def test_wall_geometry():
         n, t, axis, sign = expected[w.side]
         assert w.normal == n and w.tangent == t and w.axis == axis and w.sign == sign
         assert np.dot(w.normal, w.tangent) == 0.0
-        one_d = w.uniaxial()
-        assert (one_d.side, one_d.gap, one_d.law, one_d.wall) == (sign, 4.0, w.law, w.wall)
+        one_d = w.uniaxial()  # the wall on its own axis, a 1D model's: "+x" or "-x" by sign
+        assert (one_d.sign, one_d.axis, one_d.gap, one_d.law, one_d.wall) == \
+            (sign, 0, 4.0, w.law, w.wall)
+        assert one_d == MoatWall(w.law, w.wall, 4.0, sign)  # ±1 still names a 1D wall
 
 
 def test_from_building_round_trips_and_takes_other_stories_in_y():
@@ -92,7 +95,8 @@ def test_from_building_round_trips_and_takes_other_stories_in_y():
     ({"friction": -0.1}, r"wall \+x: friction = -0.1 must be a Coulomb coefficient >= 0"),
     ({"side": "x"}, r"side = 'x' is not a moat wall: use one of '\+x', '-x', '\+y', '-y'"),
     ({"side": "+z"}, r"side = '\+z' is not a moat wall"),
-    ({"side": 1}, r"side = 1 is not a moat wall"),
+    ({"side": 2}, r"side = 2 is not a moat wall: .*\+1 and -1 are '\+x' and '-x'"),
+    ({"side": True}, r"side = True is not a moat wall"),
     ({"wall": "steel"}, r"wall \+x: wall must be an SdofWall or a modal wall"),
 ])
 def test_bad_walls_are_named(kwargs, message):
@@ -106,7 +110,7 @@ def test_bad_moats_are_named():
     with pytest.raises(ValueError, match=r"more than one wall on side \+y"):
         PlanModel(walls=(walls[2], walls[2]))
     with pytest.raises(ValueError, match="walls must be PlanWall entries"):
-        PlanModel(walls=(walls[0].uniaxial(),))
+        PlanModel(walls=("+x",))
     with pytest.raises(ValueError, match="building must be a PlanBuilding"):
         PlanModel(Building())
     with pytest.raises(ValueError, match="side = 'north'"):
@@ -266,3 +270,24 @@ def test_run_names_the_motion_each_model_takes():
         run(PoundingModel(Building()), pair)
     with pytest.raises(ValueError, match="model must be a PoundingModel"):
         run(Building(), gm)
+
+
+def test_one_wall_class_for_both_models():
+    # a 1D model's wall is the plan wall on the +x or -x side: ±1 still names it, the plan
+    # wall's side names it too, and both are the same wall (equal and hashed alike: the suite
+    # and packed_model's cache key models by them)
+    law, wall = HERTZDAMP, CONCRETE.wall
+    assert MoatWall(law, wall, 4.0, 1) == PlanWall(law, wall, 4.0, "+x")
+    assert hash(MoatWall(law, wall, 4.0, -1)) == hash(PlanWall(law, wall, 4.0, "\u2212x"))
+    assert MoatWall(law, wall, 4.0, -1).side == "-x" and MoatWall(law, wall, 4.0, -1).sign == -1
+    # a 1D model holds only walls along its axis, without friction: others say where they go
+    with pytest.raises(ValueError, match=r"wall \+y: a 1D model's walls stand at ±gap"):
+        PoundingModel(Building(), (PlanWall(law, wall, 4.0, "+y"),))
+    with pytest.raises(ValueError, match="need a plan model"):
+        PoundingModel(Building(), (PlanWall(law, wall, 4.0, "+x", friction=0.3),))
+    with pytest.raises(ValueError, match="walls must be MoatWall entries"):
+        PoundingModel(Building(), ("+x",))
+    # the plan model along x holds the 1D walls (the same class, friction dropped)
+    plan = PlanModel(walls=rectangular_moat(friction=0.2))
+    assert plan.along("x").walls == (MoatWall(HERTZDAMP, wall, 4.0, 1),
+                                     MoatWall(HERTZDAMP, wall, 4.0, -1))

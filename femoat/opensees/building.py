@@ -166,7 +166,7 @@ def opensees_commands(model, motion):
         made, node, mat, load = wall_chain_commands(i, w.wall, 1, 0, mat)
         cmds += made
         contact = opensees_contact_material(w.law, w.gap)
-        ni, nj = (_BASE, node) if w.side > 0 else (node, _BASE)
+        ni, nj = (_BASE, node) if w.sign > 0 else (node, _BASE)
         cmds += [("uniaxialMaterial", contact[0], mat, *contact[1:]),
                  ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat, "-dir", 1)]
         mat += 1
@@ -282,7 +282,7 @@ def _initial_state(model, motion, v0):
     T[:ns, :ns] = np.eye(ns)
     col = ns
     for i, w in enumerate(model.walls):
-        block = wall_chain_transform(w.wall, w.side)
+        block = wall_chain_transform(w.wall, w.sign)
         T[col:col + len(block), col:col + len(block)] = block
         nodes += wall_chain_nodes(i, w.wall)
         col += len(block)
@@ -308,7 +308,7 @@ def _to_dofs(X, model, ns):
     parts, col = [X[..., :ns]], ns
     for w in model.walls:
         m = len(wall_modes(w.wall)[0])
-        parts.append(chain_to_modes(X[..., col:col + m], w.wall, w.side))
+        parts.append(chain_to_modes(X[..., col:col + m], w.wall, w.sign))
         col += m
     return np.concatenate(parts, axis=-1)
 
@@ -469,9 +469,9 @@ def _summarise(hist, model, motion, packed, dt, kinetic, cmds):
         phi = wall_modes(w.wall)[3]
         walls[:, c] = x[:, col:col + phi.size] @ phi
         col += phi.size
-    indent = np.column_stack([w.side * base - w.gap - walls[:, i]
+    indent = np.column_stack([w.sign * base - w.gap - walls[:, i]
                               for i, w in enumerate(model.walls)]) if nw else np.zeros((t.size, 0))
-    names = ["pos" if w.side > 0 else "neg" for w in model.walls]
+    names = ["pos" if w.sign > 0 else "neg" for w in model.walls]
     impacts = []
     for c in range(nw):
         closed = indent[:, c] > 0.0

@@ -15,97 +15,15 @@ Order: a moat's walls are kept in :data:`SIDES` order (+x, −x, +y, −y), the 
 per-wall array (docs/plan.md §2).
 """
 
-import math
-from dataclasses import dataclass
-
-from femoat.contact.laws import ContactLaw, make_law
-from femoat.structure.pounding import MoatWall, wall_modes
+from femoat.contact.laws import make_law
+from femoat.structure.pounding import SIDES, MoatWall, wall_side
 from femoat.walls.presets import wall_preset
 
-SIDES = ("+x", "-x", "+y", "-y")
-"""The four walls, named by their outward normal, in the order of every per-wall array."""
+PlanWall = MoatWall
+"""A moat wall in plan: the one wall class, :class:`femoat.structure.pounding.MoatWall` (its side a
+normal, "+x", "-x", "+y" or "-y"; its wall friction)."""
 
-_NORMALS = {"+x": (1.0, 0.0), "-x": (-1.0, 0.0), "+y": (0.0, 1.0), "-y": (0.0, -1.0)}
-_TYPOGRAPHIC = str.maketrans({"\u2212": "-", "\u2013": "-"})  # "−x" (minus sign) reads as "-x"
-
-
-def wall_side(side):
-    """The canonical name ("+x", "-x", "+y" or "-y") of a wall side; a ValueError names the
-    four."""
-    name = side.strip().translate(_TYPOGRAPHIC).lower() if isinstance(side, str) else side
-    if name not in _NORMALS:
-        raise ValueError(f"side = {side!r} is not a moat wall: use one of '+x', '-x', '+y', '-y' "
-                         "(the wall's outward normal seen from the base mat).")
-    return name
-
-
-@dataclass(frozen=True)
-class PlanWall:
-    """One wall of a rectangular moat and its contact.
-
-    Parameters
-    ----------
-    law : ContactLaw
-        The contact law between base mat and wall (along the wall's normal).
-    wall : SdofWall or ModalWall
-        The wall behind the contact spring (femoat.walls), moving along its normal.
-    gap : float
-        Clearance between base mat and wall at rest [in], >= 0.
-    side : str
-        "+x", "-x", "+y" or "-y": the wall's outward normal seen from the base mat.
-    friction : float
-        Coulomb coefficient μ_w [-] >= 0 of the base mat sliding along the wall while in contact
-        (tangential force at most μ_w times the contact force); 0 (default) is frictionless.
-    """
-
-    law: ContactLaw
-    wall: object
-    gap: float = 4.0
-    side: str = "+x"
-    friction: float = 0.0
-
-    def __post_init__(self):
-        object.__setattr__(self, "side", wall_side(self.side))
-        where = f"wall {self.side}"
-        if not isinstance(self.law, ContactLaw):
-            raise ValueError(f"{where}: law must be a ContactLaw (see femoat.contact.make_law).")
-        try:
-            wall_modes(self.wall)
-        except ValueError as exc:
-            raise ValueError(f"{where}: {exc}") from None
-        if not (isinstance(self.gap, (int, float)) and math.isfinite(self.gap) and self.gap >= 0):
-            raise ValueError(f"{where}: gap = {self.gap!r} must be a clearance >= 0 [in] (the "
-                             "distance from the base mat to the wall at rest).")
-        if not (isinstance(self.friction, (int, float)) and math.isfinite(self.friction)
-                and self.friction >= 0):
-            raise ValueError(f"{where}: friction = {self.friction!r} must be a Coulomb "
-                             "coefficient >= 0 [-] (0 for a frictionless wall).")
-
-    @property
-    def normal(self):
-        """Outward normal n = (n_x, n_y) [-] seen from the base mat."""
-        return _NORMALS[self.side]
-
-    @property
-    def tangent(self):
-        """Direction along the wall t = (−n_y, n_x) [-] (n turned by +90°)."""
-        nx, ny = self.normal
-        return (-ny, nx)
-
-    @property
-    def axis(self):
-        """0 for a wall normal to x (+x, −x), 1 for one normal to y."""
-        return 0 if self.side[1] == "x" else 1
-
-    @property
-    def sign(self):
-        """+1 for the wall at +gap along its axis, −1 for the one at −gap."""
-        return 1 if self.side[0] == "+" else -1
-
-    def uniaxial(self):
-        """This wall along its axis: the 1D :class:`~femoat.structure.pounding.MoatWall`
-        (friction dropped: nothing slides along a wall in a 1D model)."""
-        return MoatWall(self.law, self.wall, self.gap, self.sign)
+__all__ = ["SIDES", "PlanWall", "rectangular_moat", "wall_side"]
 
 
 def rectangular_moat(preset="concrete", law="H", gap=4.0, damping="published", friction=0.0,

@@ -34,35 +34,101 @@ def wall_modes(wall):
         raise ValueError("wall must be an SdofWall or a modal wall (see femoat.walls).") from None
 
 
+SIDES = ("+x", "-x", "+y", "-y")
+"""The four walls of a moat, named by their outward normal seen from the base mat, in the order
+of every per-wall array of a plan model."""
+
+_NORMALS = {"+x": (1.0, 0.0), "-x": (-1.0, 0.0), "+y": (0.0, 1.0), "-y": (0.0, -1.0)}
+_TYPOGRAPHIC = str.maketrans({"\u2212": "-", "\u2013": "-"})  # "−x" (minus sign) reads as "-x"
+_SIGNED = {1: "+x", -1: "-x"}  # a 1D model's sides: +1 and −1 along its axis
+
+
+def wall_side(side):
+    """The canonical name ("+x", "-x", "+y" or "-y") of a wall side; +1 and −1 (a 1D model's
+    walls at +gap and −gap) are "+x" and "-x". A ValueError names the choices."""
+    if isinstance(side, str):
+        name = side.strip().translate(_TYPOGRAPHIC).lower()
+    elif isinstance(side, int) and not isinstance(side, bool) and side in _SIGNED:
+        name = _SIGNED[side]
+    else:
+        name = side
+    if name not in _NORMALS:
+        raise ValueError(f"side = {side!r} is not a moat wall: use one of '+x', '-x', '+y', '-y' "
+                         "(the wall's outward normal seen from the base mat; +1 and -1 are "
+                         "'+x' and '-x').")
+    return name
+
+
 @dataclass(frozen=True)
 class MoatWall:
-    """One moat wall and its contact.
+    """One moat wall and its contact, in a 1D model (its walls at ±gap along x) or in plan (a
+    rectangular moat's).
 
     Parameters
     ----------
     law : ContactLaw
-        The contact law between base mat and wall.
+        The contact law between base mat and wall (along the wall's normal).
     wall : SdofWall or modal wall
-        The wall behind the contact spring.
+        The wall behind the contact spring (femoat.walls), moving along its normal.
     gap : float
         Clearance between base mat and wall at rest [in], >= 0.
-    side : int
-        +1 for the wall at +gap, −1 for the wall at −gap.
+    side : str or int
+        The wall's outward normal seen from the base mat: "+x", "-x", "+y" or "-y"; +1 and −1
+        (the wall at +gap and at −gap of a 1D model) are "+x" and "-x". Kept as the name.
+    friction : float
+        Coulomb coefficient μ_w [-] >= 0 of the base mat sliding along the wall while in contact
+        (tangential force at most μ_w times the contact force; a plan model's: nothing slides
+        along a wall in a 1D model); 0 (default) is frictionless.
     """
 
     law: ContactLaw
     wall: object
     gap: float = 4.0
-    side: int = 1
+    side: str = "+x"
+    friction: float = 0.0
 
     def __post_init__(self):
+        object.__setattr__(self, "side", wall_side(self.side))
+        where = f"wall {self.side}"
         if not isinstance(self.law, ContactLaw):
-            raise ValueError("law must be a ContactLaw (see femoat.contact.make_law).")
-        wall_modes(self.wall)
-        if not (math.isfinite(self.gap) and self.gap >= 0):
-            raise ValueError(f"gap = {self.gap!r} must be a clearance >= 0 [in].")
-        if self.side not in (1, -1):
-            raise ValueError(f"side = {self.side!r} must be +1 or -1.")
+            raise ValueError(f"{where}: law must be a ContactLaw (see femoat.contact.make_law).")
+        try:
+            wall_modes(self.wall)
+        except ValueError as exc:
+            raise ValueError(f"{where}: {exc}") from None
+        if not (isinstance(self.gap, (int, float)) and math.isfinite(self.gap) and self.gap >= 0):
+            raise ValueError(f"{where}: gap = {self.gap!r} must be a clearance >= 0 [in] (the "
+                             "distance from the base mat to the wall at rest).")
+        if not (isinstance(self.friction, (int, float)) and math.isfinite(self.friction)
+                and self.friction >= 0):
+            raise ValueError(f"{where}: friction = {self.friction!r} must be a Coulomb "
+                             "coefficient >= 0 [-] (0 for a frictionless wall).")
+
+    @property
+    def normal(self):
+        """Outward normal n = (n_x, n_y) [-] seen from the base mat."""
+        return _NORMALS[self.side]
+
+    @property
+    def tangent(self):
+        """Direction along the wall t = (−n_y, n_x) [-] (n turned by +90°)."""
+        nx, ny = self.normal
+        return (-ny, nx)
+
+    @property
+    def axis(self):
+        """0 for a wall normal to x (+x, −x), 1 for one normal to y."""
+        return 0 if self.side[1] == "x" else 1
+
+    @property
+    def sign(self):
+        """+1 for the wall at +gap along its axis, −1 for the one at −gap."""
+        return 1 if self.side[0] == "+" else -1
+
+    def uniaxial(self):
+        """This wall in a 1D model along its axis (the model's axis is its x): "+x" or "-x" by
+        its sign, friction dropped (nothing slides along a wall in a 1D model)."""
+        return MoatWall(self.law, self.wall, self.gap, self.sign)
 
 
 @dataclass(frozen=True)
@@ -73,6 +139,14 @@ class PoundingModel:
     walls: tuple = ()
 
     def __post_init__(self):
+        for w in self.walls:
+            if not isinstance(w, MoatWall):
+                raise ValueError("walls must be MoatWall entries (femoat.structure.pounding).")
+            if w.axis != 0 or w.friction != 0.0:
+                raise ValueError(f"wall {w.side}: a 1D model's walls stand at ±gap along its "
+                                 "axis (side +1 or -1, '+x' or '-x') without wall friction; "
+                                 "walls normal to y, or friction along a wall, need a plan model "
+                                 "(femoat.plan).")
         sides = [w.side for w in self.walls]
         if len(set(sides)) != len(sides):
             raise ValueError("walls: at most one wall per side (+1 and −1).")
@@ -80,7 +154,7 @@ class PoundingModel:
     def dof_names(self):
         names = ["base"] + [f"floor{k + 1}" for k in range(len(self.building.floor_weights))]
         for w in self.walls:
-            tag = "pos" if w.side > 0 else "neg"
+            tag = "pos" if w.sign > 0 else "neg"
             nm = len(wall_modes(w.wall)[0])
             names += [f"wall_{tag}"] if nm == 1 else [f"wall_{tag}_mode{i + 1}" for i in range(nm)]
         return names
@@ -127,13 +201,13 @@ class PoundingModel:
         col = n_struct
         for w, (mm, kk, cc, phi, L) in zip(self.walls, modes):
             bvec = np.zeros(n)
-            bvec[0] = w.side
+            bvec[0] = w.sign
             for i in range(len(mm)):
                 M[col, col] = mm[i]
                 K[col, col] = kk[i]
                 C[col, col] = cc[i]
                 # the wall's modal coordinates point away from the building: ground load sign
-                r[col] = L[i] * w.side
+                r[col] = L[i] * w.sign
                 bvec[col] = -phi[i]
                 col += 1
             contacts.append((bvec, w))
@@ -152,7 +226,7 @@ class PoundingModel:
             c_code=np.array([c[1].law.code for c in contacts], dtype=np.int64),
             c_P=_stack([c[1].law.packed() for c in contacts], width=N_PARAMS),
             c_H=np.zeros((len(contacts), N_HISTORY)),
-            c_names=["pos" if c[1].side > 0 else "neg" for c in contacts],
+            c_names=["pos" if c[1].sign > 0 else "neg" for c in contacts],
             walls=self.walls,
         )
 
