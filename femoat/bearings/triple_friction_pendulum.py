@@ -169,6 +169,22 @@ walks a curved path (written by ``plan_trial`` and ``plan_commit``, never read b
 them: not part of the state's value).
 
 Recoverable energy: Σ_i (W/L̄_i)·|d_i|²/2 + μ_i·W·u_y,i·|z_i|²/2 + k_0·(|d_i| − g_i)₊²/2.
+
+Velocity-dependent friction (not modelled). Unlike the single pendulum, whose μ(v) reads the
+bearing's own velocity, each surface's μ_i would read its own sliding rate ḋ_i, which the series
+does not give as a function of the bearing's state and velocity: with the sliders massless and
+two elements sliding, the common force gives W·d_1/L̄_1 + μ_1(|ḋ_1|)·W = W·d_2/L̄_2 + μ_2(|ḋ_2|)·W
+with ḋ_1 + ḋ_2 = v, an implicit equation for the split (unique where each μ_i grows with speed,
+as Constantinou's μ_fast − (μ_fast − μ_slow)·e^(−a|v|) does), so the internal displacements
+become stiff states of their own (relaxation rate ~(1/L̄_1 + 1/L̄_2)/(μ_1′ + μ_2′), unbounded as
+μ′ → 0 at speed, where it tends to this module's rate-independent split). The split by the
+rate-independent compliances, ḋ_i = C_i·Ḟ, drops μ_i′·d(|ḋ_i|)/dt, which is not small (L̄_i·μ_i′
+times the slider's acceleration: tens of in/s on a record). OpenSees' element evaluates each
+friction model at its element's backward-Euler rate (d_i − d_i,n)/Δt from the previous Newton
+iteration, i.e. solves the implicit split at first order in Δt. A faithful femoat form needs the
+slips in the rate form's state (their stiff relaxation in the coupled step's implicit part) and
+a step duration in the one-axis kernels' contract (today (u, v) only), so it is left for its
+own change; a velocity-dependent single pendulum (``femoat.bearings.friction_pendulum``) has it.
 """
 
 from dataclasses import dataclass
