@@ -189,3 +189,30 @@ def test_a_kind_registered_from_a_test_file_runs_in_1d_and_in_plan(tmp_path):
     # 1e-6 (at the default 1e-5 they part by 1e-4)
     assert both["peak_drift_x"] == pytest.approx(out["free_x2"]["peak_drift"], rel=1e-6)
     assert both["peak_drift_y"] == pytest.approx(out["free_y2"]["peak_drift"], rel=1e-6)
+
+
+def test_the_rate_forms_optional_kernels_default_to_one_sliding_direction():
+    # the pendulum and the lead-rubber bearing leave plan_rate_turn and plan_rate_branch out of
+    # their modules: the generated dispatcher gives them the one-direction measure r = z·v,
+    # ṙ = g·v + z·a (g = ż from their plan_rate) and plan_branch; the triple pendulum keeps its
+    # own. A rate form without one of its required kernels is refused (check_kind).
+    import numpy as np
+
+    from femoat.bearings.dispatch import bearing_plan_rate_turn
+    from femoat.bearings.friction_pendulum import FrictionPendulum
+
+    source = registry.generate()
+    turn = source.split("def bearing_plan_rate_turn(kind, ")[1].split("\n\n\n")[0]
+    assert "_turn_along(z, g, vx, vy, ax, ay)" in turn.split("if kind == 0:")[1].split("if")[0]
+    assert "_plan_rate_turn_2(" in turn
+    branch = source.split("def bearing_plan_rate_branch(kind, ")[1].split("\n\n\n")[0]
+    assert "_plan_branch_0(p, s, ux, uy)" in branch and "_plan_rate_branch_2(" in branch
+    fp = FrictionPendulum()
+    p, s = fp.params(), fp.initial_state_plan()
+    u_y = fp.u_y
+    # z = (0.6, 0.8) on the rim, v = (1, 2) [in/s], a = (3, -1) [in/s²]: z·v = 2.2,
+    # g = (v − (z·v)·z)/u_y = (−0.32, 0.24)/u_y, ṙ = g·v + z·a = 0.16/u_y + 1.0
+    z, g, J = np.array([0.6, 0.8]), np.zeros(2), np.zeros((2, 2))
+    r, dr = bearing_plan_rate_turn(0, p, s, 0.0, 0.0, 1.0, 2.0, 3.0, -1.0, z, g, J)
+    assert r == pytest.approx(2.2, rel=1e-15)
+    assert dr == pytest.approx(0.16 / u_y + 1.0, rel=1e-13)

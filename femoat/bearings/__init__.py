@@ -25,7 +25,7 @@ is the first), listed in :data:`femoat.bearings.registry.KINDS`. It provides
     which a velocity turning negative unloads the bearing ((0, 0): none);
 
 optionally a **rate form** for the coupled-friction step (:mod:`femoat.integration.methods.ark5`;
-all or none, :data:`femoat.bearings.registry.RATE_KERNELS`): ``N_RATE_PLAN``, the width of its
+all or none but the two with defaults, :data:`femoat.bearings.registry.RATE_KERNELS`): ``N_RATE_PLAN``, the width of its
 friction state z (a vector the step carries while the kind says so), and
 
   - ``plan_rate_active(p, s, vx, vy) -> bool``: whether a step from the committed state at the
@@ -35,11 +35,14 @@ friction state z (a vector the step carries while the kind says so), and
     ∂g/∂z into ``J`` (the step solves each stage's z implicitly with it); z's first two entries
     are the committed direction of sliding (the kink search's test of a straight step);
   - ``plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J) -> (r, ṙ)``: the loading measure
-    whose crossing of zero downwards unloads the bearing (the pendulum: z·v) and its time rate
-    at the acceleration (ax, ay) (the turn search lands a step where it crosses, z moving);
+    whose crossing of zero downwards unloads the bearing and its time rate at the acceleration
+    (ax, ay) (the turn search lands a step where it crosses, z moving); optional: without it,
+    a bearing whose z is one sliding direction, r = z·v and ṙ = g·v + z·a
+    (:func:`femoat.bearings.rate_form.turn_along`, the pendulum's and the lead-rubber
+    bearing's);
   - ``plan_rate_branch(p, s, ux, uy, z) -> int``: the branch at a trial point of a step that
-    carries z, z given there (the kink search follows z along the step; the pendulum:
-    ``plan_branch``);
+    carries z, z given there (the kink search follows z along the step); optional: without
+    it, ``plan_branch`` (z's value does not change the branch while it is carried);
   - ``plan_rate_force(p, s, ux, uy, vx, vy, z, f, k, c)``: force and tangents at a stage whose z
     is given; ``plan_rate_commit(p, s, ux, uy, vx, vy, z)``: commit the step's end.
 

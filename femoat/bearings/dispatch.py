@@ -22,8 +22,6 @@ from femoat.bearings.friction_pendulum import (
     plan_rate as _plan_rate_0,
     plan_rate_force as _plan_rate_force_0,
     plan_rate_commit as _plan_rate_commit_0,
-    plan_rate_turn as _plan_rate_turn_0,
-    plan_rate_branch as _plan_rate_branch_0,
 )
 from femoat.bearings.lead_rubber import (
     axis_trial as _axis_trial_1,
@@ -39,8 +37,6 @@ from femoat.bearings.lead_rubber import (
     plan_rate as _plan_rate_1,
     plan_rate_force as _plan_rate_force_1,
     plan_rate_commit as _plan_rate_commit_1,
-    plan_rate_turn as _plan_rate_turn_1,
-    plan_rate_branch as _plan_rate_branch_1,
 )
 from femoat.bearings.triple_friction_pendulum import (
     axis_trial as _axis_trial_2,
@@ -59,6 +55,7 @@ from femoat.bearings.triple_friction_pendulum import (
     plan_rate_turn as _plan_rate_turn_2,
     plan_rate_branch as _plan_rate_branch_2,
 )
+from femoat.bearings.rate_form import turn_along as _turn_along
 from femoat.compilation.jit import njit
 
 KINDS = (
@@ -243,9 +240,11 @@ def bearing_plan_rate_commit(kind, p, s, ux, uy, vx, vy, z):
 def bearing_plan_rate_turn(kind, p, s, ux, uy, vx, vy, ax, ay, z, g, J):
     """:func:`plan_rate_turn` of bearing kind ``kind``."""
     if kind == 0:
-        return _plan_rate_turn_0(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
+        _plan_rate_0(p, s, ux, uy, vx, vy, z, g, J)
+        return _turn_along(z, g, vx, vy, ax, ay)
     if kind == 1:
-        return _plan_rate_turn_1(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
+        _plan_rate_1(p, s, ux, uy, vx, vy, z, g, J)
+        return _turn_along(z, g, vx, vy, ax, ay)
     if kind == 2:
         return _plan_rate_turn_2(p, s, ux, uy, vx, vy, ax, ay, z, g, J)
     return (np.nan, np.nan)
@@ -255,9 +254,9 @@ def bearing_plan_rate_turn(kind, p, s, ux, uy, vx, vy, ax, ay, z, g, J):
 def bearing_plan_rate_branch(kind, p, s, ux, uy, z):
     """:func:`plan_rate_branch` of bearing kind ``kind``."""
     if kind == 0:
-        return _plan_rate_branch_0(p, s, ux, uy, z)
+        return _plan_branch_0(p, s, ux, uy)
     if kind == 1:
-        return _plan_rate_branch_1(p, s, ux, uy, z)
+        return _plan_branch_1(p, s, ux, uy)
     if kind == 2:
         return _plan_rate_branch_2(p, s, ux, uy, z)
     return -1

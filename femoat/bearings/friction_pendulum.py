@@ -53,7 +53,7 @@ import numpy as np
 
 from femoat import checks as _checks
 from femoat.bearings import registry
-from femoat.bearings.rate_form import turn_along, write_rate
+from femoat.bearings.rate_form import write_rate
 from femoat.compilation.jit import njit
 
 KEY = "fp"
@@ -373,21 +373,6 @@ def _moved_back(p, s, ux, uy):
     tx = s[_ZCX] + (ux - s[_UCX]) / p[_UY]
     ty = s[_ZCY] + (uy - s[_UCY]) / p[_UY]
     return tx * tx + ty * ty <= 1.0
-
-
-@njit(cache=True)
-def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
-    """(r, ṙ): r = z·v, whose crossing of zero downwards unloads the bearing, and its rate
-    ṙ = g(z, v)·v + z·a at the acceleration (ax, ay) [in/s²] (``g``, ``J`` scratch)."""
-    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
-    return turn_along(z, g, vx, vy, ax, ay)
-
-
-@njit(cache=True)
-def plan_rate_branch(p, s, ux, uy, z):
-    """The branch at the trial (ux, uy) [in] of a step that carries z: :func:`plan_branch` (z's
-    value does not change it: while z is carried the bearing only unloads, at a turn)."""
-    return plan_branch(p, s, ux, uy)
 
 
 @njit(cache=True)

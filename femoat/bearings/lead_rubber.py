@@ -118,7 +118,7 @@ import numpy as np
 
 from femoat import checks as _checks
 from femoat.bearings.faces import BearingFaces
-from femoat.bearings.rate_form import turn_along, write_rate
+from femoat.bearings.rate_form import write_rate
 from femoat.compilation.jit import njit
 
 KEY = "lrb"
@@ -640,21 +640,6 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     """The rate of :func:`loading_rate` into ``g`` (2,) and its Jacobian into ``J`` (at least
     2 × 2) at the velocity (vx, vy) [in/s] (the displacement does not enter)."""
     write_rate(loading_rate(p, z[0], z[1], vx, vy), g, J)
-
-
-@njit(cache=True)
-def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
-    """(r, ṙ): r = z·v, whose crossing of zero downwards unloads the bearing, and its rate
-    ṙ = g(z, v)·v + z·a at the acceleration (ax, ay) [in/s²] (``g``, ``J`` scratch)."""
-    plan_rate(p, s, ux, uy, vx, vy, z, g, J)
-    return turn_along(z, g, vx, vy, ax, ay)
-
-
-@njit(cache=True)
-def plan_rate_branch(p, s, ux, uy, z):
-    """The branch at the trial (ux, uy) [in] of a step that carries z: :func:`plan_branch` (z's
-    value does not change it: while z is carried the bearing only unloads, at a turn)."""
-    return plan_branch(p, s, ux, uy)
 
 
 @njit(cache=True)

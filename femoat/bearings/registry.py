@@ -69,6 +69,15 @@ downwards unloads the bearing (the pendulum's z·v) and its rate at the accelera
 z, with z given (the kink search follows z along the step). A kind without it answers ``plan_rate_active`` False (its plan trials follow the
 step's path)."""
 
+RATE_DEFAULTS = {
+    "bearing_plan_rate_turn": ("_plan_rate_{k}(p, s, ux, uy, vx, vy, z, g, J)",
+                               "return _turn_along(z, g, vx, vy, ax, ay)"),
+    "bearing_plan_rate_branch": (None, "return _plan_branch_{k}(p, s, ux, uy)"),
+}
+"""What the dispatcher does for a kind with a rate form that leaves these two out: a bearing
+whose z is one sliding direction, r = z·v with ṙ = g·v + z·a (``rate_form.turn_along``), and
+the branch of ``plan_branch`` (z's value does not change it while z is carried)."""
+
 RATE_PYTHON_NAMES = ("N_RATE_PLAN",)
 """The names a kind with a rate form provides besides its kernels: the width of its state."""
 
@@ -155,10 +164,11 @@ def check_kind(name):
     if missing:
         raise ValueError(f"bearing kind {name}: missing {', '.join(missing)}; a bearing kind "
                          "provides every name femoat.bearings' docstring lists.")
-    rate = [v[0] for v in RATE_KERNELS.values()]
+    rate = [v[0] for fn, v in RATE_KERNELS.items() if fn not in RATE_DEFAULTS]
     given = [k for k in rate if hasattr(mod, k)]
     if given and len(given) != len(rate):
-        raise ValueError(f"bearing kind {name}: a rate form is all of {', '.join(rate)}; "
+        raise ValueError(f"bearing kind {name}: a rate form is all of {', '.join(rate)} "
+                         f"(and optionally {', '.join(RATE_KERNELS[f][0] for f in RATE_DEFAULTS)}); "
                          f"it has only {', '.join(given)}.")
     if given and not all(hasattr(mod, k) for k in RATE_PYTHON_NAMES):
         raise ValueError(f"bearing kind {name}: a rate form also gives "
@@ -189,8 +199,10 @@ def generate(names=None):
         out.append(f"from {name} import (")
         out += [f"    {v[0]} as _{v[0]}_{k}," for v in KERNELS.values()]
         if rated[k]:
-            out += [f"    {v[0]} as _{v[0]}_{k}," for v in RATE_KERNELS.values()]
+            out += [f"    {v[0]} as _{v[0]}_{k}," for v in RATE_KERNELS.values()
+                    if hasattr(importlib.import_module(name), v[0])]
         out.append(")")
+    out.append('from femoat.bearings.rate_form import turn_along as _turn_along')
     out.append('from femoat.compilation.jit import njit')
     listed = "".join(f"\n    {name!r}," for name in names)
     out += ['', f"KINDS = ({listed}\n)", '"""The kinds this dispatcher was generated for."""', '',
@@ -200,6 +212,11 @@ def generate(names=None):
                 f'    """:func:`{own}` of bearing kind ``kind``."""']
         for k in range(len(names)):
             if fn in RATE_KERNELS and not rated[k]:
+                continue
+            if fn in RATE_DEFAULTS and not hasattr(importlib.import_module(names[k]), own):
+                first, last = RATE_DEFAULTS[fn]
+                out += [f"    if kind == {k}:"] + ([f"        {first.format(k=k)}"] if first else []) \
+                    + [f"        {last.format(k=k)}"]
                 continue
             call = f"_{own}_{k}({args})"
             out += [f"    if kind == {k}:", f"        return {call}" if missing else
