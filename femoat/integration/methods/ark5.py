@@ -197,40 +197,56 @@ def _rates_vanish(n_stages, model, state, work):
 
 @njit(cache=True, inline="always")
 def _stage_rates(st, model, state, work):
-    """g_s = g(Z_s; U_s, V_s) of each carried state into ``work.kz[st]``."""
-    _, g, _, _, J, _ = rate_scratch(work)
-    for e in range(model.b_dofs.shape[0]):
-        nq = work.b_rate[e]
+    """g_s = g(Z_s; U_s, V_s) of each carried state into ``work.kz[st]`` (:func:`_rates_at`)."""
+    _rates_at(st, work.b_rate, model.b_kind, model.b_P, state.b_S, model.b_dofs, work.kz,
+              work.bz, work.u, work.v, work.rq)
+
+
+@njit(cache=True)
+def _rates_at(st, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
+    """:func:`_stage_rates` on the arrays it reads (its own compiled function: the coupled step
+    stays small enough for LLVM to keep its loops in registers)."""
+    nq_max = rq.shape[1] - 1
+    g, J = rq[1], rq[4:4 + nq_max]
+    for e in range(b_dofs.shape[0]):
+        nq = b_rate[e]
         if nq == 0:
             continue
-        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        bearing_plan_rate(model.b_kind[e], model.b_P[e], state.b_S[e], work.u[ix], work.u[iy],
-                          work.v[ix], work.v[iy], work.bz[e], g, J)
+        ix, iy = b_dofs[e, 0], b_dofs[e, 1]
+        bearing_plan_rate(b_kind[e], b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], bz[e], g, J)
         for q in range(nq):
-            work.kz[st, e, q] = g[q]
+            kz[st, e, q] = g[q]
 
 
 @njit(cache=True, inline="always")
 def _solve_stage_states(st, hh, model, state, work):
+    """Each carried state at stage ``st`` (:func:`_stage_states`)."""
+    return _stage_states(st, hh, work.b_rate, model.b_kind, model.b_P, state.b_S, model.b_dofs,
+                         work.kz, work.bz, work.u, work.v, work.rq)
+
+
+@njit(cache=True)
+def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
     """Each carried state at stage ``st``: Z = w + h·γ·g(Z; U_s, V_s), w = z_n + h·Σ_{j<s}
-    a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``work.bz``). False when
+    a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``bz``). False when
     one does not converge (the step is then retried shorter)."""
     hg = hh * ARK_AI[st, st]
-    z0, g, w, _, J, A = rate_scratch(work)
-    for e in range(model.b_dofs.shape[0]):
-        nq = work.b_rate[e]
+    nq_max = rq.shape[1] - 1
+    z0, g, w, J, A = rq[0], rq[1], rq[2], rq[4:4 + nq_max], rq[4 + nq_max:4 + 2 * nq_max]
+    for e in range(b_dofs.shape[0]):
+        nq = b_rate[e]
         if nq == 0:
             continue
-        kind, p, s = model.b_kind[e], model.b_P[e], state.b_S[e]
+        kind, p, s = b_kind[e], b_P[e], b_S[e]
         bearing_plan_rate_state(kind, p, s, z0)
         for q in range(nq):
             acc = 0.0
             for j in range(st):
-                acc += ARK_AI[st, j] * work.kz[j, e, q]
+                acc += ARK_AI[st, j] * kz[j, e, q]
             w[q] = z0[q] + hh * acc
-        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
-        ux, uy, vx, vy = work.u[ix], work.u[iy], work.v[ix], work.v[iy]
-        z = work.bz[e]
+        ix, iy = b_dofs[e, 0], b_dofs[e, 1]
+        ux, uy, vx, vy = u[ix], u[iy], v[ix], v[iy]
+        z = bz[e]
         step = np.inf
         for _ in range(MAX_NEWTON):
             bearing_plan_rate(kind, p, s, ux, uy, vx, vy, z, g, J)
