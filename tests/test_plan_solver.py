@@ -76,6 +76,9 @@ def test_with_no_y_excitation_it_is_the_1d_run_bit_for_bit(method, isolator):
     for plan_side, side in (("+x", "pos"), ("-x", "neg")):
         np.testing.assert_array_equal(p.wall_displacement(plan_side), one.wall_displacement(side))
         np.testing.assert_array_equal(p.wall_force(plan_side), one.wall_force(side))
+    np.testing.assert_array_equal(one.wall_force(1), one.wall_force("+x"))  # ±1 name sides
+    with pytest.raises(ValueError, match="side = '\\+y': a 1D run's walls are 'pos'"):
+        one.wall_force("+y")
     with pytest.raises(ValueError, match="axis = 'y': use 'x'"):
         one.story_drifts("y")
     with pytest.raises(ValueError, match="axis = None: use 'x' or 'y'"):

@@ -18,6 +18,7 @@ from femoat.contact._dispatch import acts_at_zero
 from femoat.dense_peaks import linear_accel_velocity_abs_max
 from femoat.integration.recording.channels import CHANNELS, UNITS
 from femoat.results.base import Result
+from femoat.structure.pounding import wall_side
 from femoat.structure.roles import STORY, role_of
 from femoat.units import G
 
@@ -90,7 +91,13 @@ class RunResult(Result):
         return self.ground_acceleration
 
     def _side(self, side):
-        return {"pos": "pos", "+": "pos", 1: "pos", "neg": "neg", "-": "neg", -1: "neg"}[side]
+        if side in ("pos", "+", "neg", "-"):
+            return "pos" if side in ("pos", "+") else "neg"
+        name = wall_side(side)  # ±1, "+x", "-x" (and names a bad side)
+        if name not in ("+x", "-x"):
+            raise ValueError(f"side = {side!r}: a 1D run's walls are 'pos' (+1, '+x') and 'neg' "
+                             "(-1, '-x').")
+        return "pos" if name == "+x" else "neg"
 
     # ---- derived channels ----------------------------------------------------------------
     @property

@@ -61,14 +61,14 @@ class Result:
 
     # ---- shared -------------------------------------------------------------------------
     def _axis(self, axis):
-        """The index of ``axis`` among :attr:`AXES`; None stands for the only axis of a run
-        along one."""
+        """``axis`` checked against :attr:`AXES`; None stands for the only axis of a run along
+        one."""
         if axis is None and len(self.AXES) == 1:
-            return 0
+            return self.AXES[0]
         if axis not in self.AXES:
             raise ValueError(f"axis = {axis!r}: use {' or '.join(map(repr, self.AXES))} (the "
                              "axes this run moved along).")
-        return self.AXES.index(axis)
+        return axis
 
     @property
     def n_floors(self):
@@ -87,7 +87,7 @@ class Result:
         """Displacements of the base mat and the floors along ``axis`` relative to the ground
         [in], columns base, floor 1, ..."""
         self._require("displacement")
-        return self.displacement[:, self._cols(self.AXES[self._axis(axis)])]
+        return self.displacement[:, self._cols(self._axis(axis))]
 
     def story_drifts(self, axis=None):
         """Interstory drifts along ``axis``, u_k − u_{k−1} [in], one column per story (story 1
@@ -98,7 +98,7 @@ class Result:
         """Absolute accelerations along ``axis`` of the base mat and the floors [in/s²]
         (columns base, floor 1, ...)."""
         self._require("acceleration")
-        name = self.AXES[self._axis(axis)]
+        name = self._axis(axis)
         return self.acceleration[:, self._cols(name)] + self._ground(name)[:, None]
 
     def _wall_index(self, side):
@@ -158,7 +158,7 @@ class Result:
         if (self.meta.get("info", {}).get("method") not in QUINTIC_METHODS
                 or self.velocity.shape[1] == 0):
             return [float(x) for x in np.abs(acc).max(axis=0)]
-        name = self.AXES[self._axis(axis)]
+        name = self._axis(axis)
         cols = self._cols(name)
         smooth = smooth_intervals(self.contact_closed.reshape(self.time.size, -1),
                                   [w.get("closes_smoothly", False) for w in self.meta["walls"]])
