@@ -92,8 +92,13 @@ Recorder = namedtuple("Recorder", [*BUFFERS, "episodes"])
 
 @njit(cache=True, inline="always")
 def rate_scratch(work):
-    """(z0, g, w, v, J, A): views of ``work.rq``, four vectors of at least nq entries, J (nq,
-    nq + 1: a kind uses its first nq columns) and A (nq, nq + 1)."""
-    rq = work.rq
+    """(z0, g, w, v, J, A): the views :func:`rate_views` of ``work.rq``."""
+    return rate_views(work.rq)
+
+
+@njit(cache=True, inline="always")
+def rate_views(rq):
+    """(z0, g, w, v, J, A): views of the rate scratch ``rq``, four vectors of at least nq
+    entries, J (nq, nq + 1: a kind uses its first nq columns) and A (nq, nq + 1)."""
     nq = rq.shape[1] - 1
     return rq[0], rq[1], rq[2], rq[3], rq[4:4 + nq], rq[4 + nq:4 + 2 * nq]

@@ -51,7 +51,7 @@ from femoat.bearings.dispatch import (
     bearing_plan_rate_state,
 )
 from femoat.compilation.jit import njit
-from femoat.integration.bundles import rate_scratch
+from femoat.integration.bundles import rate_scratch, rate_views
 from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.forces import _internal_force, trial_outputs
 from femoat.integration.methods import dp5
@@ -206,8 +206,7 @@ def _stage_rates(st, model, state, work):
 def _rates_at(st, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
     """:func:`_stage_rates` on the arrays it reads (its own compiled function: the coupled step
     stays small enough for LLVM to keep its loops in registers)."""
-    nq_max = rq.shape[1] - 1
-    g, J = rq[1], rq[4:4 + nq_max]
+    _, g, _, _, J, _ = rate_views(rq)
     for e in range(b_dofs.shape[0]):
         nq = b_rate[e]
         if nq == 0:
@@ -231,8 +230,7 @@ def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
     a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``bz``). False when
     one does not converge (the step is then retried shorter)."""
     hg = hh * ARK_AI[st, st]
-    nq_max = rq.shape[1] - 1
-    z0, g, w, J, A = rq[0], rq[1], rq[2], rq[4:4 + nq_max], rq[4 + nq_max:4 + 2 * nq_max]
+    z0, g, w, _, J, A = rate_views(rq)
     for e in range(b_dofs.shape[0]):
         nq = b_rate[e]
         if nq == 0:
