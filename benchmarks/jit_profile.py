@@ -15,7 +15,8 @@ The model: the paper building in plan in the concrete moat (law H, 4 in gaps) on
 isolator, FEMA P695 far-field pair ``--pair`` at the MCE (time x 0.5, as ``plan_speed.py
 --mce``), at its default method, no history (a suite's run); ``--oned``: the 1D model along x
 under the pair's x component. Needs ``perf`` (linux-tools) and permission to sample a process
-(``kernel.perf_event_paranoid`` <= 1, or root).
+(``kernel.perf_event_paranoid`` <= 1, or root). It reads numba's internals (a library's
+``_final_module`` and its codegen's engine, as of numba 0.68): a benchmark tool, not the API.
 """
 
 import argparse
