@@ -11,6 +11,7 @@ from femoat.collapse import (
     runaway_limits,
     runaway_summary,
 )
+from femoat.bearings import registry as bearing_registry
 from femoat.integration.settings import Integrator
 from femoat.integration.solve import solve
 from femoat.ground_motions.pair import RecordPair
@@ -86,6 +87,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         raise ValueError("a PoundingModel runs along x under one GroundMotion: give one "
                          "component (pair.x), or run the pair on a femoat.plan.PlanModel "
                          "(PlanBuilding.from_building(model.building) and a rectangular_moat).")
+    bearing_registry.check_compiled(model.building.isolator)  # in this process's loop?
     if duration is None:
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")

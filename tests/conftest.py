@@ -4,6 +4,11 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
+# One compiled loop for the whole session: the commands the tests run (in this process or in a
+# subprocess) would otherwise compile a second one for the paper's bearing alone
+# (femoat.compilation.selection); tests/test_kind_selection.py checks that choice itself.
+os.environ["FEMOAT_BEARINGS"] = "all"
+
 from pathlib import Path  # noqa: E402
 
 # Test records shipped with the repository (provenance, licence and sha256 in data/README.md).

@@ -54,6 +54,9 @@ def run(args):
         print(f"femoat opensees: error: {exc}", file=sys.stderr)
         return 2
     sc = load_scenario(args.scenario)
+    from femoat.compilation.selection import select_for
+
+    select_for([sc.model])  # the loop of this model's bearing kind (before the first run)
     duration = sc.motion.duration + sc.extra_time
     if args.script is not None:
         write_opensees_script(sc.model, sc.motion, args.dt, args.script, duration=duration)

@@ -128,6 +128,10 @@ def _render_wall(args):
     geometry, mesh, kind = _load(args)
     model = _build(kind, geometry, mesh, False)
     building, motion, integrator, extra_time = _building_and_motion(args.scenario)
+    if args.run is None:
+        from femoat.compilation.selection import select_for
+
+        select_for([building])  # the loop of this model's bearing kind (before the run)
     first = building.walls[0]
     xi = args.damping_ratio
     if xi is None:

@@ -85,6 +85,9 @@ def run(args):
     from femoat.scenario import load_scenario
 
     sc = load_scenario(args.scenario)
+    from femoat.compilation.selection import select_for
+
+    select_for([sc.model])  # the loop of this model's bearing kind (before the first run)
     out = args.out or sc.output_folder
     echo = []
     if sc.plan:  # what runs, before it runs (a default moat said loudly)

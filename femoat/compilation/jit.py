@@ -17,6 +17,9 @@ import sys
 
 _registered = False
 _checked = set()
+_started = []
+"""The kernels whose numba dispatcher this process has made (compiled or loaded from the
+cache), in order."""
 
 OPTIONS = {"_nrt": False}
 """Compile options for every kernel. No kernel allocates, so numba's reference-counted runtime
@@ -51,6 +54,7 @@ class Kernel:
             import numba
 
             self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
+            _started.append(self)
         return self._dispatcher
 
     @property
@@ -62,8 +66,26 @@ class Kernel:
     def __call__(self, *args):
         return self.dispatcher(*args)
 
+    def retarget(self, py_func):
+        """Make this kernel compile ``py_func`` instead (its name and arguments the same), as
+        long as numba has not compiled any kernel of this process yet (:func:`started`): every
+        kernel that calls this one then compiles the new function, since numba reads a callee
+        only when it compiles its caller. How :func:`femoat.bearings.registry.select` leaves
+        bearing kinds out of the loop."""
+        if started():
+            raise RuntimeError(f"{self!r}: cannot be retargeted once numba has compiled a kernel "
+                               "of this process (do it first, in a new process).")
+        self.py_func = py_func
+        self.__wrapped__ = py_func
+
     def __repr__(self):
         return f"<femoat kernel {self.py_func.__module__}.{self.py_func.__qualname__}>"
+
+
+def started():
+    """Whether this process has made any kernel's numba dispatcher (compiled or loaded one):
+    from then on the compiled loop's callees are fixed."""
+    return bool(_started)
 
 
 def _fresh_cache(func):

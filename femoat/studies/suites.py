@@ -11,13 +11,19 @@ def run_suites(name, definitions, out, workers=None, serial=False, overwrite=Fal
     ``out/<key>``; return {key: its run table} (:func:`femoat.suite.load_table`)."""
     from femoat.suite import load_table, run_suite, suite_from_dict
 
+    from femoat.compilation.selection import select_for
+    from femoat.suite.runs import models
+
     stream = stream or sys.stderr
     out = Path(out)
+    suites = {key: suite_from_dict(d) for key, d in definitions.items()}
+    # one loop for every suite of the study (their bearing kinds together)
+    select_for([m for suite in suites.values() for m in models(suite)])
     tables = {}
-    for key, d in definitions.items():
+    for key, suite in suites.items():
         stream.write(f"femoat study {name}: the {key.upper()} suite\n")
-        run_suite(suite_from_dict(d), out / key, workers=workers, serial=serial,
-                  overwrite=overwrite, stream=stream)
+        run_suite(suite, out / key, workers=workers, serial=serial, overwrite=overwrite,
+                  stream=stream)
         tables[key] = load_table(out / key)
     return tables
 

@@ -111,8 +111,10 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
     prepare(suite, out, overwrite)
     tasks, total = pending(suite, out)
     unit = "runs" if suite.scaling.hunt is None else "traces"
+    bearings = select_kinds(suite)
     summary = dict(out=str(out), suite_hash=suite.hash, todo=total, unit=unit, runs=0,
-                   collapses=0, failures=0, failed_tasks=0, kernels=_kernels(stream))
+                   collapses=0, failures=0, failed_tasks=0, kernels=_kernels(stream),
+                   bearings=list(bearings))
     if not tasks:
         stream.write(f"femoat suite: nothing to do, every run is stored in {out}\n")
         return summary
@@ -122,13 +124,23 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
             for task in tasks:
                 _finish(suite, out, task, task.run(suite, out), progress)
         else:
-            _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file)
+            _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file,
+                     bearings)
     finally:
         progress.close()
     elapsed = time.perf_counter() - progress.start
     summary.update(runs=progress.runs, collapses=progress.collapses, failures=progress.failures,
                    elapsed=elapsed, runs_per_second=progress.runs / elapsed if elapsed else 0.0)
     return summary
+
+
+def select_kinds(suite):
+    """Compile this process's loop for the bearing kinds ``suite``'s models need
+    (:mod:`femoat.compilation.selection`: the pendulum alone, or every kind); returns their
+    scenario keys, which the workers choose too."""
+    from femoat.compilation.selection import select_for
+
+    return select_for(rn.models(suite))
 
 
 def _kernels(stream):
@@ -144,13 +156,16 @@ def _kernels(stream):
     return "jit"
 
 
-def _load_kernels():
-    """In a worker: load (or compile) the solver's kernels; return how many signatures this
-    process compiled itself rather than loading them from numba's cache."""
+def _load_kernels(bearings):
+    """In a worker: load (or compile) the solver's kernels for the bearing kinds ``bearings``
+    (the client's choice); return how many signatures this process compiled itself rather than
+    loading them from numba's cache."""
+    from femoat.bearings import registry
     from femoat.compilation.exports import EXPORTS
     from femoat.startup.warmup import warm_up
     from femoat.integration.solve import kernels
 
+    registry.select(bearings)
     warm_up()
     k = kernels()
     return sum(sum(getattr(k, name).dispatcher.stats.cache_misses.values()) for name in EXPORTS)
@@ -212,7 +227,7 @@ def _sigint_ignored():
         signal.signal(signal.SIGINT, old)
 
 
-def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file):
+def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file, bearings):
     import logging
 
     from dask.distributed import Client, LocalCluster, as_completed
@@ -239,7 +254,7 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
     try:
         # per worker: the kernels loaded (from the cache the client just wrote) and how many
         # signatures it had to compile itself (0 when the cache served it)
-        summary["worker_compiles"] = sorted(client.run(_load_kernels).values())
+        summary["worker_compiles"] = sorted(client.run(_load_kernels, bearings).values())
         shared = client.scatter(suite, broadcast=True)
         client.run(rn.warm, suite)  # per worker: models built, record set loaded, once
         progress.restart()

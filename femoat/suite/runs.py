@@ -132,6 +132,11 @@ def _fields(suite):
     return _FIELDS[suite.hash]
 
 
+def models(suite):
+    """Every variation's model (1D or plan), in variation order, built once per process."""
+    return [_variation(suite, v).pounding for v in range(len(suite.combos))]
+
+
 def _variation(suite, var_index):
     key = (suite.hash, var_index)
     if key not in _VARIATIONS:
