@@ -133,6 +133,32 @@ def test_bad_buildings_are_named(kwargs, message):
         PlanBuilding(**kwargs)
 
 
+@pytest.mark.parametrize("kwargs", [
+    {"base_weight": 0.0}, {"floor_weights": (8.0, -1.0, 7.0)}, {"story_damping_ratio": -0.01},
+    {"story_damping_period": 0.0}, {"story_heights": (39.0, 39.0)}, {"p_delta": "yes"},
+    {"isolator_capacity": float("nan")},
+])
+def test_one_building_checks_the_shared_parameters_once(kwargs):
+    # the parameters both buildings have are checked by one code (StoryBuilding): the same
+    # sentence from the 1D and the plan building
+    messages = []
+    for cls in (Building, PlanBuilding):
+        with pytest.raises(ValueError) as err:
+            cls(**kwargs)
+        messages.append(str(err.value))
+    assert messages[0] == messages[1]
+    # and what follows from them is one code too: the plan building along x is the 1D one,
+    # its stories per axis where the 1D building has its one axis
+    plan = PlanBuilding(p_delta=True, stories_y=(Elastic(k=30.0),) * 3)
+    one = plan.along("y")
+    assert plan.stories_along("y") == one.stories_along("x") == one.stories
+    assert plan.geometric_stiffnesses() == one.geometric_stiffnesses()
+    assert (plan.heights, plan.total_weight, plan.story_damping_beta) == (
+        one.heights, one.total_weight, one.story_damping_beta)
+    with pytest.raises(ValueError, match="axis = 'y': use 'x'"):
+        one.stories_along("y")
+
+
 # ------------------------------------------------------------------------------------- layout
 
 

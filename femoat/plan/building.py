@@ -17,12 +17,11 @@ The isolator is the bidirectional friction pendulum
 :class:`~femoat.structure.materials.Elastic` spring (the same stiffness in x and y) or ``None``.
 """
 
-import math
 from dataclasses import dataclass, field, fields
 
 from femoat.bearings import registry as bearing_registry
 from femoat.plan.bearing import BidirectionalFrictionPendulum
-from femoat.structure.building import Building, check_story
+from femoat.structure.building import Building, StoryBuilding
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
 
 AXES = ("x", "y")
@@ -33,31 +32,19 @@ def _paper_stories():
 
 
 @dataclass(frozen=True)
-class PlanBuilding:
+class PlanBuilding(StoryBuilding):
     """A base-isolated shear building in plan (x, y translations per floor, no torsion).
 
-    Parameters
-    ----------
-    base_weight : float
-        Weight of the base mat [kip], > 0.
-    floor_weights : tuple of float
-        Floor weights [kip], bottom to top; empty for a bare base mat.
+    Parameters as :class:`~femoat.structure.building.Building` (weights [kip], story damping,
+    story heights [in], P-Delta, isolator capacity [in], measured in plan: |u| of the base mat),
+    but for:
+
     isolator : BidirectionalFrictionPendulum or Elastic or None
-        The isolation layer lumped into one element between base mat and ground; an Elastic
-        spring acts alike in x and y; ``None`` leaves the base mat free.
+        A bearing kind's plan form (:mod:`femoat.bearings`: friction coupled in plan), an
+        Elastic spring (alike in x and y), or ``None`` (the base mat free).
     stories_x, stories_y : tuple of materials
         One story material per floor (Elastic, Bilinear or IMKBilinear), bottom to top, for the
         x and the y direction.
-    story_damping_ratio : float
-        Viscous damping ratio ξ [-] at ``story_damping_period`` (both directions).
-    story_damping_period : float
-        Fixed-base first period T1 [s] used for β = 2ξ/ω1.
-    story_heights : tuple of float or None
-        Story heights [in], bottom to top; None: 39.0 in per story (as the 1D Building).
-    p_delta : bool
-        Add each story's geometric stiffness −P_k/h_k in x and in y.
-    isolator_capacity : float
-        Displacement capacity of the isolator [in], measured in plan (|u| of the base mat).
     """
 
     base_weight: float = 10.0
@@ -71,6 +58,8 @@ class PlanBuilding:
     p_delta: bool = False
     isolator_capacity: float = 7.0
 
+    AXES = AXES
+
     def __post_init__(self):
         if isinstance(self.isolator, FrictionPendulum):
             raise ValueError("isolator: a FrictionPendulum is the 1D bearing; in plan use "
@@ -81,18 +70,13 @@ class PlanBuilding:
             names = ", ".join(c.__name__ for c in bearings)
             raise ValueError(f"isolator must be a {names}, an Elastic spring or None.")
         for axis in AXES:
-            key = f"stories_{axis}"
-            stories = getattr(self, key)
-            if not isinstance(stories, tuple):
+            key = self._stories_field(axis)
+            if not isinstance(getattr(self, key), tuple):
                 raise ValueError(f"{key} must be a tuple of story materials, one per floor.")
-            if len(stories) != len(self.floor_weights):
-                raise ValueError(f"{key}: {len(stories)} story springs for "
-                                 f"{len(self.floor_weights)} floors; give one story material per "
-                                 "floor.")
-            for mat in stories:
-                check_story(mat, key)
-        for axis in AXES:  # the other parameters: checked (and named) as the 1D Building does
-            self.along(axis)
+        self._check_shared()
+
+    def _stories_field(self, axis):
+        return f"stories_{axis}"
 
     def along(self, axis):
         """The 1D :class:`~femoat.structure.building.Building` along ``axis`` ("x" or "y"): the
@@ -106,7 +90,7 @@ class PlanBuilding:
             iso = iso.uniaxial()
         return Building(
             base_weight=self.base_weight, floor_weights=tuple(self.floor_weights), isolator=iso,
-            stories=getattr(self, f"stories_{axis}"),
+            stories=self.stories_along(axis),
             story_damping_ratio=self.story_damping_ratio,
             story_damping_period=self.story_damping_period, story_heights=self.story_heights,
             p_delta=self.p_delta, isolator_capacity=self.isolator_capacity)
@@ -130,22 +114,3 @@ class PlanBuilding:
                    story_damping_period=building.story_damping_period,
                    story_heights=building.story_heights, p_delta=building.p_delta,
                    isolator_capacity=building.isolator_capacity)
-
-    @property
-    def heights(self):
-        """Story heights [in], bottom to top."""
-        return self.along("x").heights
-
-    def geometric_stiffnesses(self):
-        """P-Delta stiffness of each story [kip/in], the same in x and y: −P_k/h_k, or zeros."""
-        return self.along("x").geometric_stiffnesses()
-
-    @property
-    def story_damping_beta(self):
-        """Stiffness-proportional factor β = 2ξ/ω1 [s], both directions."""
-        return 2.0 * self.story_damping_ratio * self.story_damping_period / (2.0 * math.pi)
-
-    @property
-    def total_weight(self):
-        """Weight above the isolators [kip]."""
-        return self.base_weight + sum(self.floor_weights)

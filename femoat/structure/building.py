@@ -39,9 +39,94 @@ def check_story(material, where="stories"):
                          "(use Elastic, Bilinear or IMKBilinear).")
 
 
+class StoryBuilding:
+    """What every building shares, on one axis or in plan: the weights, the story damping, the
+    story heights, P-Delta and the isolator's capacity (their fields, parameters as
+    :class:`Building`), their checks and what follows from them. :class:`Building` adds the
+    stories of its one axis, :class:`femoat.plan.PlanBuilding` one set per direction; each
+    checks its own isolator."""
+
+    AXES = ("x",)
+    """The axes the building moves along."""
+
+    def _check_shared(self):
+        """Raise, naming the parameter, unless the shared fields are valid."""
+        if not (math.isfinite(self.base_weight) and self.base_weight > 0):
+            raise ValueError(f"base_weight = {self.base_weight!r} must be a positive weight [kip].")
+        for i, w in enumerate(self.floor_weights):
+            if not (math.isfinite(w) and w > 0):
+                raise ValueError(f"floor_weights[{i}] = {w!r} must be a positive weight [kip].")
+        for axis in self.AXES:
+            key = self._stories_field(axis)
+            stories = getattr(self, key)
+            if len(stories) != len(self.floor_weights):
+                raise ValueError(f"{key}: {len(stories)} story springs for "
+                                 f"{len(self.floor_weights)} floors; give one story material per "
+                                 "floor.")
+            for mat in stories:
+                check_story(mat, key)
+        if not (math.isfinite(self.story_damping_ratio) and self.story_damping_ratio >= 0):
+            raise ValueError(f"story_damping_ratio = {self.story_damping_ratio!r} must be >= 0.")
+        if not (math.isfinite(self.story_damping_period) and self.story_damping_period > 0):
+            raise ValueError(
+                f"story_damping_period = {self.story_damping_period!r} must be a positive period [s].")
+        if self.story_heights is not None:
+            if len(self.story_heights) != len(self.floor_weights):
+                raise ValueError(f"story_heights: {len(self.story_heights)} heights for "
+                                 f"{len(self.floor_weights)} floors; give one height [in] per story.")
+            for i, h in enumerate(self.story_heights):
+                if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0):
+                    raise ValueError(f"story_heights[{i}] = {h!r} must be a positive height [in].")
+        if not isinstance(self.p_delta, bool):
+            raise ValueError(f"p_delta = {self.p_delta!r} must be true or false.")
+        if not (isinstance(self.isolator_capacity, (int, float))
+                and self.isolator_capacity > 0 and not math.isnan(self.isolator_capacity)):
+            raise ValueError(f"isolator_capacity = {self.isolator_capacity!r} must be a positive "
+                             "displacement [in] (math.inf for none).")
+
+    def _stories_field(self, axis):
+        """The field holding the stories along ``axis``."""
+        return "stories"
+
+    def stories_along(self, axis="x"):
+        """The story materials along ``axis`` ("x" or "y"), bottom to top."""
+        if axis not in self.AXES:
+            raise ValueError(f"axis = {axis!r}: use {' or '.join(map(repr, self.AXES))}.")
+        return getattr(self, self._stories_field(axis))
+
+    @property
+    def heights(self):
+        """Story heights [in], bottom to top (the default where none were given)."""
+        if self.story_heights is None:
+            return tuple(DEFAULT_STORY_HEIGHT for _ in self.floor_weights)
+        return tuple(float(h) for h in self.story_heights)
+
+    def gravity_loads(self):
+        """Axial (gravity) load on each story [kip]: the weight of its floor and those above."""
+        w = self.floor_weights
+        return tuple(float(sum(w[k:])) for k in range(len(w)))
+
+    def geometric_stiffnesses(self):
+        """P-Delta stiffness of each story [kip/in], in every direction: −P_k/h_k, or zeros
+        without P-Delta."""
+        if not self.p_delta:
+            return tuple(0.0 for _ in self.floor_weights)
+        return tuple(-p / h for p, h in zip(self.gravity_loads(), self.heights))
+
+    @property
+    def total_weight(self):
+        """Weight above the isolators [kip]."""
+        return self.base_weight + sum(self.floor_weights)
+
+    @property
+    def story_damping_beta(self):
+        """Stiffness-proportional factor β = 2ξ/ω1 [s] (every direction)."""
+        return 2.0 * self.story_damping_ratio * self.story_damping_period / (2.0 * math.pi)
+
+
 @dataclass(frozen=True)
-class Building:
-    """A base-isolated shear building.
+class Building(StoryBuilding):
+    """A base-isolated shear building on one axis.
 
     Parameters
     ----------
@@ -50,8 +135,9 @@ class Building:
     floor_weights : tuple of float
         Floor weights [kip], bottom to top; empty for a bare base mat.
     isolator : FrictionPendulum or Elastic or None
-        The isolation layer lumped into one element between base mat and ground; ``None`` leaves
-        the base mat free (no restoring force, no friction).
+        The isolation layer lumped into one element between base mat and ground: a bearing
+        kind's one-axis form (:mod:`femoat.bearings`), an Elastic spring, or ``None`` (the base
+        mat free: no restoring force, no friction).
     stories : tuple of materials
         One shear spring per floor (Elastic, Bilinear or IMKBilinear), bottom to top.
     story_damping_ratio : float
@@ -80,18 +166,6 @@ class Building:
     isolator_capacity: float = 7.0
 
     def __post_init__(self):
-        if not (math.isfinite(self.base_weight) and self.base_weight > 0):
-            raise ValueError(f"base_weight = {self.base_weight!r} must be a positive weight [kip].")
-        for i, w in enumerate(self.floor_weights):
-            if not (math.isfinite(w) and w > 0):
-                raise ValueError(f"floor_weights[{i}] = {w!r} must be a positive weight [kip].")
-        if len(self.stories) != len(self.floor_weights):
-            raise ValueError(
-                f"stories: {len(self.stories)} story springs for {len(self.floor_weights)} floors; "
-                "give one story material per floor."
-            )
-        for s in self.stories:
-            check_story(s)
         bearings = bearing_registry.axis_classes()
         if self.isolator is not None and not isinstance(self.isolator, (*bearings, Elastic)):
             if type(self.isolator) in bearing_registry.plan_classes():
@@ -99,49 +173,4 @@ class Building:
                                  "a 1D building takes its one-axis form (.uniaxial()).")
             names = ", ".join(c.__name__ for c in bearings)
             raise ValueError(f"isolator must be a bearing ({names}), an Elastic spring or None.")
-        if not (math.isfinite(self.story_damping_ratio) and self.story_damping_ratio >= 0):
-            raise ValueError(f"story_damping_ratio = {self.story_damping_ratio!r} must be >= 0.")
-        if not (math.isfinite(self.story_damping_period) and self.story_damping_period > 0):
-            raise ValueError(
-                f"story_damping_period = {self.story_damping_period!r} must be a positive period [s].")
-        if self.story_heights is not None:
-            if len(self.story_heights) != len(self.floor_weights):
-                raise ValueError(f"story_heights: {len(self.story_heights)} heights for "
-                                 f"{len(self.floor_weights)} floors; give one height [in] per story.")
-            for i, h in enumerate(self.story_heights):
-                if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0):
-                    raise ValueError(f"story_heights[{i}] = {h!r} must be a positive height [in].")
-        if not isinstance(self.p_delta, bool):
-            raise ValueError(f"p_delta = {self.p_delta!r} must be true or false.")
-        if not (isinstance(self.isolator_capacity, (int, float))
-                and self.isolator_capacity > 0 and not math.isnan(self.isolator_capacity)):
-            raise ValueError(f"isolator_capacity = {self.isolator_capacity!r} must be a positive "
-                             "displacement [in] (math.inf for none).")
-
-    @property
-    def heights(self):
-        """Story heights [in], bottom to top (the default where none were given)."""
-        if self.story_heights is None:
-            return tuple(DEFAULT_STORY_HEIGHT for _ in self.floor_weights)
-        return tuple(float(h) for h in self.story_heights)
-
-    def gravity_loads(self):
-        """Axial (gravity) load on each story [kip]: the weight of its floor and those above."""
-        w = self.floor_weights
-        return tuple(float(sum(w[k:])) for k in range(len(w)))
-
-    def geometric_stiffnesses(self):
-        """P-Delta stiffness of each story [kip/in]: −P_k/h_k, or zeros without P-Delta."""
-        if not self.p_delta:
-            return tuple(0.0 for _ in self.floor_weights)
-        return tuple(-p / h for p, h in zip(self.gravity_loads(), self.heights))
-
-    @property
-    def total_weight(self):
-        """Weight above the isolators [kip]."""
-        return self.base_weight + sum(self.floor_weights)
-
-    @property
-    def story_damping_beta(self):
-        """Stiffness-proportional factor β = 2ξ/ω1 [s]."""
-        return 2.0 * self.story_damping_ratio * self.story_damping_period / (2.0 * math.pi)
+        self._check_shared()
