@@ -56,16 +56,24 @@ ImpactMaterial carries a first-step offset, both O(dt); a fixed step does not lo
 closure or separation, which costs O(dt) in impulse and O(dt²) elsewhere.
 """
 
-import contextlib
 import math
 import os
 import tempfile
-import time as _time
 
 import numpy as np
 
 from femoat.contact.laws import ContactLaw
-from femoat.opensees.available import import_opensees
+from femoat.opensees.transient import (  # noqa: F401  (OpenSeesFailure, read_binary, ...: here before)
+    OpenSeesFailure,
+    analysis_commands,
+    captured_stderr,
+    check_history,
+    checked_duration,
+    read_binary,
+    run_twin,
+    set_initial_state,
+    timed_analysis,
+)
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.bearings import registry as bearing_registry
 from femoat.structure.materials import Bilinear, Elastic, IMKBilinear
@@ -80,15 +88,6 @@ _INERTER_TAG = 100000
 """The inerter of wall i's mode j >= 2: ``_INERTER_TAG + 100·i + j``."""
 _WALL_SERIES = 100
 """Time series and pattern of wall i's ground-load correction: ``_WALL_SERIES + i``."""
-
-
-class OpenSeesFailure(RuntimeError):
-    """OpenSees stopped: Newton did not converge (``kind == "diverged"``) or the state became
-    NaN or infinite (``kind == "nan"``) at ``time`` [s], step ``step``."""
-
-    def __init__(self, message, kind, time, step):
-        super().__init__(message)
-        self.kind, self.time, self.step = kind, time, step
 
 
 def story_material(mat):
@@ -265,12 +264,6 @@ def wall_load_commands(i, correction, accel, dt, ndm, axis):
     return cmds
 
 
-def analysis_commands(tol, max_iter):
-    return [("constraints", "Plain"), ("numberer", "Plain"), ("system", "BandGeneral"),
-            ("test", "NormDispIncr", tol, max_iter), ("algorithm", "Newton"),
-            ("integrator", "Newmark", 0.5, 0.25), ("analysis", "Transient")]
-
-
 def _initial_state(model, motion, v0):
     """Node tags (the building's, then every wall's chain), T (nodes × DOFs: node displacements
     X = T·u from femoat's DOFs u) and the initial velocities and equilibrium accelerations per
@@ -311,26 +304,6 @@ def _to_dofs(X, model, ns):
         parts.append(chain_to_modes(X[..., col:col + m], w.wall, w.sign))
         col += m
     return np.concatenate(parts, axis=-1)
-
-
-@contextlib.contextmanager
-def captured_stderr(sink):
-    """Collect what OpenSees writes to file descriptor 2 (material banners, warnings) into
-    ``sink`` (a list) instead of the terminal."""
-    try:
-        fd = os.dup(2)
-    except OSError:  # no real stderr: nothing to capture
-        yield
-        return
-    with tempfile.TemporaryFile(mode="w+b") as tmp:
-        os.dup2(tmp.fileno(), 2)
-        try:
-            yield
-        finally:
-            os.dup2(fd, 2)
-            os.close(fd)
-            tmp.seek(0)
-            sink.append(tmp.read().decode("utf-8", "replace"))
 
 
 def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=50):
@@ -376,46 +349,22 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
     OpenSeesFailure
         Newton failed at a step, or the state went NaN/inf.
     """
-    ops = import_opensees()
-    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
-        raise ValueError(f"dt = {dt!r} must be a positive time step [s].")
-    if duration is None:
-        duration = motion.duration + 2.0
-    if not (math.isfinite(duration) and duration > 0):
-        raise ValueError(f"duration = {duration!r} must be a positive time [s].")
+    duration = checked_duration(dt, duration, motion.duration)
     cmds = opensees_commands(model, motion)
     packed, nodes, T, v_init, a_init = _initial_state(model, motion, v0)
     n_steps = int(math.ceil(duration / dt - 1e-9))
     ns, nw = packed.n_struct, len(model.walls)
-    log = []
-    try:
-        with captured_stderr(log):
-            for name, *args in cmds:
-                getattr(ops, name)(*args)
-            for node, vi, ai in zip(nodes, T @ v_init, T @ a_init):
-                if vi != 0.0:
-                    ops.setNodeVel(node, 1, float(vi), "-commit")
-                ops.setNodeAccel(node, 1, float(ai), "-commit")
-            for name, *args in analysis_commands(tol, max_iter):
-                getattr(ops, name)(*args)
-            hist = _step_loop(ops, nodes, n_steps, dt, ns, nw, model)
-            vel = _to_dofs(np.array([ops.nodeVel(nd, 1) for nd in nodes]), model, ns)
-            kinetic = 0.5 * float(vel @ packed.M @ vel)
-    except OpenSeesFailure as exc:
-        tail = " ".join(" ".join(log).split()[-40:])
-        raise OpenSeesFailure(f"{exc} OpenSees said: {tail}", exc.kind, exc.time,
-                              exc.step) from None
-    finally:
-        ops.wipe()
+
+    def history(ops):
+        hist = _step_loop(ops, nodes, n_steps, dt, ns, nw, model)
+        vel = _to_dofs(np.array([ops.nodeVel(nd, 1) for nd in nodes]), model, ns)
+        return hist, 0.5 * float(vel @ packed.M @ vel)
+
+    rows = [(node, 1) for node in nodes]
+    hist, kinetic = run_twin(
+        cmds, lambda ops: set_initial_state(ops, rows, T @ v_init, T @ a_init), history, tol,
+        max_iter)
     return _summarise(hist, model, motion, packed, dt, kinetic, cmds)
-
-
-def read_binary(path, ncol):
-    """Rows of an OpenSees ``-binary`` recorder file: ncol float64 values then a newline byte."""
-    raw = np.fromfile(path, dtype=np.uint8)
-    width = 8 * ncol + 1
-    rows = raw.size // width
-    return raw[: rows * width].reshape(rows, width)[:, : 8 * ncol].copy().view("<f8")
 
 
 def _step_loop(ops, nodes, n_steps, dt, ns, nw, model):
@@ -431,10 +380,7 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw, model):
         ops.recorder("Node", "-binary", paths[1], "-node", *nodes[:ns], "-dof", 1, "accel")
         if nw:
             ops.recorder("Element", "-binary", paths[2], "-ele", *tags, "material", "1", "stress")
-        cpu0 = _time.process_time()
-        status = ops.analyze(n_steps, dt)
-        ops.remove("recorders")  # flushes and closes the files
-        cpu = _time.process_time() - cpu0
+        status, cpu = timed_analysis(ops, n_steps, dt)
         disp = read_binary(paths[0], 1 + len(nodes))
         acc = read_binary(paths[1], ns)
         force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
@@ -442,17 +388,9 @@ def _step_loop(ops, nodes, n_steps, dt, ns, nw, model):
     x = np.vstack([x0, _to_dofs(disp[:m, 1:], model, ns)])  # femoat's DOFs
     acc = np.vstack([a0, acc[:m]])
     f = np.vstack([np.zeros(nw), force[:m]])
-    bad = ~(np.all(np.isfinite(x), axis=1) & np.all(np.isfinite(f), axis=1))
-    if bad.any():
-        n = int(np.argmax(bad))
-        raise OpenSeesFailure(f"OpenSees returned a non-finite state at step {n} "
-                              f"(t = {n * dt:.6g} s).", "nan", n * dt, n)
-    if status != 0 or m < n_steps:
-        raise OpenSeesFailure(
-            f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
-            f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
-            "[in]: below ~1e-9 in, round-off can keep a stiff contact's increments from "
-            "meeting it).", "diverged", (m + 1) * dt, m + 1)
+    check_history(np.all(np.isfinite(x), axis=1) & np.all(np.isfinite(f), axis=1), status, m,
+                  n_steps, dt, hint=": below ~1e-9 in, round-off can keep a stiff contact's "
+                  "increments from meeting it")
     return dict(x=x, acc=acc, f=f, cpu=cpu)
 
 

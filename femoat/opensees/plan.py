@@ -73,22 +73,24 @@ not femoat's wall friction:
 import math
 import os
 import tempfile
-import time as _time
 
 import numpy as np
 
 from femoat.ground_motions.pair import RecordPair
-from femoat.opensees.available import import_opensees
 from femoat.opensees.building import (
-    OpenSeesFailure,
-    analysis_commands,
-    captured_stderr,
-    read_binary,
     story_material,
     wall_chain_commands,
     wall_chain_nodes,
     wall_chain_transform,
     wall_load_commands,
+)
+from femoat.opensees.transient import (
+    check_history,
+    checked_duration,
+    read_binary,
+    run_twin,
+    set_initial_state,
+    timed_analysis,
 )
 from femoat.opensees.single_impact import opensees_contact_material
 from femoat.bearings import registry as bearing_registry
@@ -270,13 +272,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     OpenSeesFailure
         Newton failed at a step, or the state went NaN/inf.
     """
-    ops = import_opensees()
-    if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0):
-        raise ValueError(f"dt = {dt!r} must be a positive time step [s].")
-    if duration is None:
-        duration = pair.duration + 2.0
-    if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
-        raise ValueError(f"duration = {duration!r} must be a positive time [s].")
+    duration = checked_duration(dt, duration, pair.duration)
     cmds = opensees_plan_commands(model, pair)
     packed = model.pack()
     n = packed.n
@@ -286,27 +282,17 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     ag0 = np.asarray(pair.accel_g)[:, 0] * G
     a = np.linalg.solve(packed.M, -packed.R @ ag0 - packed.C @ v)
     n_steps = int(math.ceil(duration / dt - 1e-9))
-    log, normal = [], None
-    try:
-        with captured_stderr(log):
-            for name, *args in cmds:
-                getattr(ops, name)(*args)
-            if isinstance(model.building.isolator, BidirectionalFrictionPendulum):  # N = W
-                normal = -ops.eleResponse(_BEARING_ELE, "basicForce")[0]
-            rows, T = _nodes(model)
-            for (node, d), vi, ai in zip(rows, T @ v, T @ a):
-                if vi != 0.0:
-                    ops.setNodeVel(node, d, float(vi), "-commit")
-                ops.setNodeAccel(node, d, float(ai), "-commit")
-            for name, *args in analysis_commands(tol, max_iter):
-                getattr(ops, name)(*args)
-            hist = _step_loop(ops, model, n_steps, dt)
-    except OpenSeesFailure as exc:
-        tail = " ".join(" ".join(log).split()[-40:])
-        raise OpenSeesFailure(f"{exc} OpenSees said: {tail}", exc.kind, exc.time,
-                              exc.step) from None
-    finally:
-        ops.wipe()
+    normal = []
+
+    def initial(ops):
+        if isinstance(model.building.isolator, BidirectionalFrictionPendulum):  # N = W
+            normal.append(-ops.eleResponse(_BEARING_ELE, "basicForce")[0])
+        rows, T = _nodes(model)
+        set_initial_state(ops, rows, T @ v, T @ a)
+
+    hist = run_twin(cmds, initial, lambda ops: _step_loop(ops, model, n_steps, dt), tol,
+                    max_iter)
+    normal = normal[0] if normal else None
     return _summarise(hist, model, pair, dt, normal, cmds)
 
 
@@ -335,10 +321,7 @@ def _step_loop(ops, model, n_steps, dt):
                          *[_CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
         if slider:
             ops.recorder("Element", "-binary", paths[4], "-ele", _BEARING_ELE, "basicForce")
-        cpu0 = _time.process_time()
-        status = ops.analyze(n_steps, dt)
-        ops.remove("recorders")  # flushes and closes the files
-        cpu = _time.process_time() - cpu0
+        status, cpu = timed_analysis(ops, n_steps, dt)
         disp = read_binary(paths[0], 1 + 2 * len(nodes))
         acc = read_binary(paths[1], 2 * nf)
         vel = read_binary(paths[3], 2)
@@ -349,16 +332,8 @@ def _step_loop(ops, model, n_steps, dt):
     x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
     acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
     f = np.vstack([np.zeros(nw), force[:m]])
-    bad = ~(np.all(np.isfinite(x), axis=(1, 2)) & np.all(np.isfinite(f), axis=1))
-    if bad.any():
-        k = int(np.argmax(bad))
-        raise OpenSeesFailure(f"OpenSees returned a non-finite state at step {k} "
-                              f"(t = {k * dt:.6g} s).", "nan", k * dt, k)
-    if status != 0 or m < n_steps:
-        raise OpenSeesFailure(
-            f"OpenSees did not converge at step {m + 1} (t = {(m + 1) * dt:.6g} s, "
-            f"dt = {dt:g} s); a smaller dt may help, or a looser tol (the NormDispIncr test "
-            "[in]).", "diverged", (m + 1) * dt, m + 1)
+    check_history(np.all(np.isfinite(x), axis=(1, 2)) & np.all(np.isfinite(f), axis=1), status,
+                  m, n_steps, dt)
     return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel[:m]]),
                 friction=np.vstack([q0, shear[:m]]) if slider else None)
 
