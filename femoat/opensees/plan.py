@@ -238,16 +238,10 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
         velocity-dependent μ: module docstring), Elastic or no isolator.
     pair : RecordPair
         The ground motion: its applied components (angle and scale included), x and y.
-    dt : float
-        Fixed time step [s], > 0.
-    duration : float or None
-        Analysis time [s]; default: the record plus 2 s, as :func:`femoat.run.run`.
-    v0 : array or None
-        Initial relative velocities [in/s] per femoat DOF (``model.dof_names()``).
-    tol : float
-        ``NormDispIncr`` tolerance [in] of the Newton iterations.
-    max_iter : int
-        Newton iterations per step before OpenSees gives up (then :class:`OpenSeesFailure`).
+    dt, duration, v0, tol, max_iter
+        As :func:`femoat.opensees.building.opensees_run`: the fixed step [s], the analysis time
+        [s] (default: the record plus 2 s), initial velocities [in/s] per femoat DOF, the
+        ``NormDispIncr`` tolerance [in] and the Newton iterations per step.
 
     Returns
     -------
