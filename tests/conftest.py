@@ -6,7 +6,7 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 # One compiled loop for the whole session: the commands the tests run (in this process or in a
 # subprocess) would otherwise compile a second one for the paper's bearing alone
-# (femoat.compilation.selection); tests/test_kind_selection.py checks that choice itself.
+# (femoat.startup.bearing_kinds); tests/test_kind_selection.py checks that choice itself.
 os.environ["FEMOAT_BEARINGS"] = "all"
 
 from pathlib import Path  # noqa: E402

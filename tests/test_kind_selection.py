@@ -1,4 +1,4 @@
-"""Compile only the bearing kinds a command needs (femoat.compilation.selection and
+"""Compile only the bearing kinds a command needs (femoat.startup.bearing_kinds and
 femoat.bearings.registry.select): the generated dispatcher of a part of the kinds, the choice a
 command makes from its models, the rules of choosing once per process, and (slow) that a process
 compiled for the paper's pendulum makes no kernel of the other kinds and gives the same bits.
@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from femoat.bearings import registry
-from femoat.compilation import selection
+from femoat.startup import bearing_kinds as selection
 
 ROOT = Path(__file__).resolve().parents[1]
 EVERY = tuple(range(len(registry.KINDS)))
@@ -164,7 +164,7 @@ def test_choosing_the_kinds_follows_its_rules(tmp_path):
 _PAPER_LOOP = r"""
 import json, os
 from femoat.compilation import jit
-from femoat.compilation.selection import select_for
+from femoat.startup.bearing_kinds import select_for
 from femoat.structure.building import Building
 assert select_for([Building()]) == ("fp",)
 from femoat.paper import paper_model, paper_motion

@@ -287,7 +287,7 @@ def register(name, cache_dir=None):
 
 ENV = "FEMOAT_BEARINGS"
 """The environment variable that overrides which bearing kinds a command compiles (``all``, or
-scenario keys such as ``fp,tfp``): :func:`femoat.compilation.selection.kinds_for` reads it."""
+scenario keys such as ``fp,tfp``): :func:`femoat.startup.bearing_kinds.kinds_for` reads it."""
 
 _ORIGINAL_CACHE = "FEMOAT_NUMBA_CACHE_DIR"
 """Where :func:`select` keeps the NUMBA_CACHE_DIR it found (empty: none), for its child

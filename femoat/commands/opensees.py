@@ -54,7 +54,7 @@ def run(args):
         print(f"femoat opensees: error: {exc}", file=sys.stderr)
         return 2
     sc = load_scenario(args.scenario)
-    from femoat.compilation.selection import select_for
+    from femoat.startup.bearing_kinds import select_for
 
     select_for([sc.model])  # the loop of this model's bearing kind (before the first run)
     duration = sc.motion.duration + sc.extra_time

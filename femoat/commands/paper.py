@@ -47,7 +47,7 @@ def default_folder(args):
 
 
 def run(args):
-    from femoat.compilation.selection import select_for
+    from femoat.startup.bearing_kinds import select_for
     from femoat.structure.building import Building
 
     select_for([Building()])  # the paper's building: its loop carries the pendulum alone

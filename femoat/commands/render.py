@@ -129,7 +129,7 @@ def _render_wall(args):
     model = _build(kind, geometry, mesh, False)
     building, motion, integrator, extra_time = _building_and_motion(args.scenario)
     if args.run is None:
-        from femoat.compilation.selection import select_for
+        from femoat.startup.bearing_kinds import select_for
 
         select_for([building])  # the loop of this model's bearing kind (before the run)
     first = building.walls[0]

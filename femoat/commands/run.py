@@ -85,7 +85,7 @@ def run(args):
     from femoat.scenario import load_scenario
 
     sc = load_scenario(args.scenario)
-    from femoat.compilation.selection import select_for
+    from femoat.startup.bearing_kinds import select_for
 
     select_for([sc.model])  # the loop of this model's bearing kind (before the first run)
     out = args.out or sc.output_folder

@@ -3,5 +3,6 @@
 * :mod:`~femoat.startup.probe`: a tiny run that compiles (or loads from numba's on-disk cache)
   every entry point of the solver;
 * :mod:`~femoat.startup.warmup`: that run once per process, and the start-up it cost (a run's
-  ``meta["compile_seconds"]``), paid before any timing.
+  ``meta["compile_seconds"]``), paid before any timing;
+* :mod:`~femoat.startup.bearing_kinds`: which bearing kinds a command's loop is compiled for.
 """

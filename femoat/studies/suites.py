@@ -11,7 +11,7 @@ def run_suites(name, definitions, out, workers=None, serial=False, overwrite=Fal
     ``out/<key>``; return {key: its run table} (:func:`femoat.suite.load_table`)."""
     from femoat.suite import load_table, run_suite, suite_from_dict
 
-    from femoat.compilation.selection import select_for
+    from femoat.startup.bearing_kinds import select_for
     from femoat.suite.runs import models
 
     stream = stream or sys.stderr

@@ -136,9 +136,9 @@ def run_suite(suite, out, workers=None, scheduler=None, scheduler_file=None, ser
 
 def select_kinds(suite):
     """Compile this process's loop for the bearing kinds ``suite``'s models need
-    (:mod:`femoat.compilation.selection`: the pendulum alone, or every kind); returns their
+    (:mod:`femoat.startup.bearing_kinds`: the pendulum alone, or every kind); returns their
     scenario keys, which the workers choose too."""
-    from femoat.compilation.selection import select_for
+    from femoat.startup.bearing_kinds import select_for
 
     return select_for(rn.models(suite))
 
