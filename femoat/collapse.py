@@ -84,7 +84,7 @@ class IsolatorCapacity:
             return []
         rows = [Limit("element_deformation", e, capacity, criterion=self.name)
                 for e, role in enumerate(packed.el_roles) if role.kind == ISOLATOR]
-        if getattr(packed, "bearing_dofs", np.zeros(0)).size:  # in plan: its plan displacement
+        if packed.bearing_dofs.size:  # in plan: its plan displacement
             rows.append(Limit("plan_displacement", 0, capacity, criterion=self.name))
         return rows
 
@@ -218,7 +218,7 @@ def runaway_limits(model, packed):
         elif role.kind == ISOLATOR and math.isfinite(capacity):
             rows.append(Limit("element_deformation", e, RUNAWAY_ISOLATOR * capacity,
                               runaway=True, criterion=IsolatorCapacity.name))
-    if getattr(packed, "bearing_dofs", np.zeros(0)).size and math.isfinite(capacity):
+    if packed.bearing_dofs.size and math.isfinite(capacity):
         # a plan bearing: its displacement in plan (femoat.plan)
         rows.append(Limit("plan_displacement", 0, RUNAWAY_ISOLATOR * capacity,
                           runaway=True, criterion=IsolatorCapacity.name))

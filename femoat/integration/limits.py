@@ -98,7 +98,7 @@ def pack_limits(limits, packed):
     compiled loop, each index checked against ``packed``."""
     counts = {"element": packed.el_code.size, "contact": packed.c_code.size,
               "dof": packed.n, "building dof": packed.n_struct,
-              "bearing": getattr(packed, "bearing_dofs", np.zeros(0)).size // 2}
+              "bearing": packed.bearing_dofs.shape[0]}
     out = np.zeros((len(limits), N_COLUMNS))
     for r, lim in enumerate(limits):
         if not isinstance(lim, Limit):

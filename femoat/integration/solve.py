@@ -1,6 +1,5 @@
 """Run the compiled loop on a packed model: validation, buffers, status → exceptions."""
 
-import dataclasses
 import functools
 import math
 import os
@@ -20,7 +19,6 @@ from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
 from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
-from femoat.plan.model import PackedPlanModel
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
@@ -68,8 +66,11 @@ def solve(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, progr
     Parameters
     ----------
     packed : PackedModel
+        A model's arrays (:meth:`PoundingModel.pack <femoat.structure.pounding.PoundingModel.pack>`
+        on one axis, :meth:`PlanModel.pack <femoat.plan.model.PlanModel.pack>` in plan).
     ag : array
-        Ground acceleration samples [in/s²] at t = k·dt_rec.
+        Ground acceleration samples [in/s²] at t = k·dt_rec: (samples,) on one axis (or
+        (samples, 1)), (samples, 2) in plan (x, y).
     dt_rec : float
         Sample interval of ``ag`` [s].
     duration : float
@@ -193,7 +194,7 @@ class _Start(NamedTuple):
 def _inputs(packed, ag, dt_rec, duration, u0, v0):
     """The validated inputs: (packed in the kernels' layout, ag as float array, u, v)."""
     packed = _canonical(packed)
-    components = _ground(packed).shape[1]
+    components = packed.R.shape[1]
     ag = np.array(ag, dtype=float)
     if components == 1 and ag.ndim == 1:
         ag = ag[:, None]
@@ -234,7 +235,7 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
 
     n_explicit = _uncoupled_size(packed)  # the walls apart while the gaps are open (if they can be)
     method = methods.module(integ.method)
-    if isinstance(packed, PackedPlanModel) and packed.bearing_dofs.size:
+    if packed.bearing_dofs.size:
         _check_plan_method(integ.method, packed)
     return Settings(
         method=methods.CODES[integ.method], quintic_peaks=bool(method.QUINTIC_DENSE),
@@ -280,21 +281,20 @@ def _bundles(packed, ag, u, v, settings):
     copies of the states it advances (the packed model stays reusable), its scratch."""
     n, n_explicit = packed.n, settings.n_explicit
     nel, ncon = packed.el_code.size, packed.c_code.size
-    plan = _plan_arrays(packed)
-    nb, nk = plan.b_dofs.shape[0], ag.shape[1]
+    nb, nk = packed.bearing_dofs.shape[0], ag.shape[1]
     nq = bearing_registry.rate_width()
-    model = Model(M=packed.M, C=packed.C, K=packed.K, r=_ground(packed), ag=ag,
-                  dof_axis=plan.dof_axis, base_xy=plan.base_xy, el_i=packed.el_i,
+    model = Model(M=packed.M, C=packed.C, K=packed.K, r=packed.R, ag=ag,
+                  dof_axis=packed.dof_axis, base_xy=_base_xy(packed), el_i=packed.el_i,
                   el_j=packed.el_j, el_code=packed.el_code, el_P=packed.el_P,
-                  b_kind=plan.b_kind, b_dofs=plan.b_dofs, b_P=plan.b_P, c_B=packed.c_B,
-                  c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P, c_T=plan.c_T,
-                  c_mu=plan.c_mu,
+                  b_kind=packed.bearing_kind, b_dofs=packed.bearing_dofs, b_P=packed.bearing_P,
+                  c_B=packed.c_B, c_gap=packed.c_gap, c_code=packed.c_code, c_P=packed.c_P,
+                  c_T=packed.c_T, c_mu=packed.c_friction,
                   Minv=np.ascontiguousarray(np.linalg.inv(packed.M[:n_explicit, :n_explicit])))
     h0 = settings.h_max
     state = State(t=np.zeros(1), ag_now=np.zeros(nk),
                   u=u, v=v, a=np.zeros(n), F=np.zeros(n), el_S=packed.el_S.copy(),
                   el_f=np.zeros(nel), el_d=np.zeros(nel), el_W=np.zeros(nel),
-                  b_S=plan.b_S.copy(), b_f=np.zeros((nb, 2)), b_W=np.zeros(nb),
+                  b_S=packed.bearing_S.copy(), b_f=np.zeros((nb, 2)), b_W=np.zeros(nb),
                   c_H=packed.c_H.copy(), c_f=np.zeros(ncon), c_d=np.zeros(ncon),
                   c_W=np.zeros(ncon), c_ft=np.zeros(ncon), c_Wt=np.zeros(ncon),
                   c_closed=np.zeros(ncon, dtype=np.int64),
@@ -510,7 +510,7 @@ def episode_scaling(integ, scale_open, scale_contact):
 
 
 _INT_ARRAYS = ("el_i", "el_j", "el_code", "c_code", "bearing_kind", "bearing_dofs")
-_FLOAT_ARRAYS = ("M", "C", "K", "r", "R", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H",
+_FLOAT_ARRAYS = ("M", "C", "K", "R", "el_P", "el_S", "c_B", "c_gap", "c_P", "c_H",
                  "bearing_P", "bearing_S", "c_T", "c_friction")
 
 
@@ -519,50 +519,20 @@ def _canonical(packed):
     codes and indices: one type per argument, so one compiled signature (a strided or read-only
     array would be another type to numba, compiled and cached again)."""
     changes = {}
-    fields = {f.name for f in dataclasses.fields(packed)}
     for names, dtype in ((_INT_ARRAYS, np.int64), (_FLOAT_ARRAYS, np.float64)):
         for name in names:
-            if name not in fields:
-                continue
             a = getattr(packed, name)
             if a.dtype != dtype or not a.flags.c_contiguous:
                 changes[name] = np.ascontiguousarray(a, dtype=dtype)
     return replace(packed, **changes) if changes else packed
 
 
-def _ground(packed):
-    """The ground load's influence matrix (n, components) [kip·s²/in]: a 1D model's r as one
-    column, a plan model's R (x, y)."""
-    r = np.asarray(packed.r, dtype=np.float64)
-    return np.ascontiguousarray(r.reshape(r.shape[0], -1))
-
-
-class _PlanArrays(NamedTuple):
-    """The kernels' arrays a plan model adds (empty or zero for a 1D model)."""
-
-    dof_axis: np.ndarray
-    base_xy: np.ndarray
-    b_kind: np.ndarray
-    b_dofs: np.ndarray
-    b_P: np.ndarray
-    b_S: np.ndarray
-    c_T: np.ndarray
-    c_mu: np.ndarray
-
-
-def _plan_arrays(packed):
-    """:class:`_PlanArrays` of ``packed``."""
-    n, nc = packed.n, packed.c_code.size
-    if not isinstance(packed, PackedPlanModel):
-        wp, _, ws = bearing_registry.widths()
-        return _PlanArrays(np.zeros(n, dtype=np.int64), np.array([-1, -1], dtype=np.int64),
-                           np.zeros(0, dtype=np.int64), np.zeros((0, 2), dtype=np.int64),
-                           np.zeros((0, wp)), np.zeros((0, ws)), np.zeros((nc, n)), np.zeros(nc))
-    return _PlanArrays(
-        packed.dof_axis, np.array(packed.layout.floor_dofs[0, :2], dtype=np.int64),  # (writable:
-        # a read-only array is another type to numba: another compiled signature)
-        packed.bearing_kind, packed.bearing_dofs, packed.bearing_P, packed.bearing_S,
-        np.ascontiguousarray(packed.c_T), np.ascontiguousarray(packed.c_friction))
+def _base_xy(packed):
+    """The base mat's x and y DOFs (2,) in plan, (−1, −1) on one axis (the kernels then keep no
+    displacement in plan). A writable copy: a read-only array is another type to numba, another
+    compiled signature."""
+    base = packed.layout.floor_dofs[0, :2]
+    return np.array(base if np.all(base >= 0) else (-1, -1), dtype=np.int64)
 
 
 def kernels():
@@ -611,11 +581,10 @@ def _initial_energy(kern, packed, model, u, v):
     start virgin at u)."""
     e = 0.5 * _quadratic(v, packed.M) + 0.5 * _quadratic(u, packed.K)
     el, bearing = np.zeros(packed.el_code.size), np.zeros(model.b_kind.size)
-    plan = _plan_arrays(packed)
     kern.initial_element_energies(packed.el_i, packed.el_j, packed.el_code, packed.el_P,
                                   packed.el_S, u, np.zeros(packed.el_S.shape[1]), el,
-                                  model.b_kind, model.b_dofs, model.b_P, plan.b_S, v,
-                                  np.zeros(plan.b_S.shape[1]), bearing)
+                                  model.b_kind, model.b_dofs, model.b_P, packed.bearing_S, v,
+                                  np.zeros(packed.bearing_S.shape[1]), bearing)
     for x in el.tolist():
         e += x
     for x in bearing.tolist():

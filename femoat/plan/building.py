@@ -22,9 +22,8 @@ from dataclasses import dataclass, field, fields
 from femoat.bearings import registry as bearing_registry
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.structure.building import Building, StoryBuilding
+from femoat.structure.layout import AXES
 from femoat.structure.materials import Bilinear, Elastic, FrictionPendulum
-
-AXES = ("x", "y")
 
 
 def _paper_stories():
