@@ -95,16 +95,22 @@ def test_the_commands_choose_from_their_models(monkeypatch, tmp_path):
     asked = []
 
     def record(chosen, cache_dir=None):
-        asked.append(tuple(chosen))
+        asked.append(registry.indices(chosen))
         return EVERY
 
     monkeypatch.delenv("FEMOAT_BEARINGS")
     monkeypatch.setattr(registry, "select", record)
     assert cli.main(["paper", "--quick", "--no-figures", "--out", str(tmp_path / "p")]) == 0
-    assert asked == [("fp",)]
+    assert asked == [(FP,)]
     scenario = ROOT / "examples" / "tfp_building.toml"
     assert cli.main(["run", str(scenario), "--no-figures", "--out", str(tmp_path / "r")]) == 0
-    assert asked[-1] == registry.keys()
+    assert asked[-1] == EVERY
+    # femoat compile: every kind unless told (--bearings, or FEMOAT_BEARINGS)
+    assert cli.main(["compile"]) == 0 and asked[-1] == EVERY
+    assert cli.main(["compile", "--bearings", "fp"]) == 0 and asked[-1] == (FP,)
+    monkeypatch.setenv("FEMOAT_BEARINGS", "tfp")
+    assert cli.main(["compile"]) == 0 and asked[-1] == (TFP,)
+    assert cli.main(["compile", "--bearings", "pendulum"]) == 2  # a clear error, not a trace
 
 
 def _env(tmp_path):
@@ -184,7 +190,18 @@ try:
     refused = ""
 except RuntimeError as exc:
     refused = str(exc)
-print(json.dumps({"one": one, "plan": plan, "made": made, "refused": refused}))
+# a suite of the pendulum on a local Dask cluster: the client's choice reaches its worker,
+# which loads the client's loop from the pendulum's cache and compiles nothing
+import io, sys
+from femoat.suite import load_suite, run_suite
+record = os.path.join(sys.argv[1], "Rinaldi228.AT2")
+open("suite.toml", "w").write(
+    f'[records]\nfiles = ["{record}"]\nduration = 1.0\nextra_time = 0.5\n'
+    '[scaling]\nmethod = "pga"\ntargets = [0.3]\n')
+summary = run_suite(load_suite("suite.toml"), "suite_out", workers=1, stream=io.StringIO())
+suite = {k: summary[k] for k in ("runs", "failed_tasks", "bearings", "worker_compiles")}
+print(json.dumps({"one": one, "plan": plan, "made": made, "refused": refused,
+                  "suite": suite}))
 """
 
 
@@ -194,15 +211,21 @@ def test_the_paper_loop_compiles_no_other_kind_and_gives_the_same_bits(tmp_path)
     # private cache: numba makes no kernel of the lead-rubber bearing or the triple pendulum
     # (their modules absent from the kernels it made), a 1D paper run and a plan run give the
     # bits of this session's loop of every kind (the same kernels, fewer branches), and a
-    # model on another kind is refused with the way out
+    # model on another kind is refused with the way out; a suite of the pendulum on a local
+    # Dask cluster hands the choice to its worker
     env = _env(tmp_path)
-    done = subprocess.run([sys.executable, "-c", _PAPER_LOOP], capture_output=True, text=True,
-                          env=env, cwd=tmp_path, timeout=1800)
+    peer = Path(__file__).resolve().parent / "data" / "peer"
+    done = subprocess.run([sys.executable, "-c", _PAPER_LOOP, str(peer)], capture_output=True,
+                          text=True, env=env, cwd=tmp_path, timeout=1800)
     assert done.returncode == 0, done.stderr
     out = json.loads(done.stdout)
     assert "femoat.bearings.friction_pendulum" in out["made"]
     assert not [m for m in out["made"] if "lead_rubber" in m or "triple_friction" in m]
     assert registry.by_key("lrb").AXIS_CLASS.__name__ in out["refused"]
+    # its suite: one run on one local worker, which chose the client's kinds and loaded the
+    # client's loop (no signature compiled in the worker)
+    assert out["suite"] == {"runs": 1, "failed_tasks": 0, "bearings": ["fp"],
+                            "worker_compiles": [0]}
 
     from femoat.ground_motions import GroundMotion, RecordPair
     from femoat.paper import paper_model, paper_motion
