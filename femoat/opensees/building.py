@@ -25,8 +25,6 @@ closure or separation, which costs O(dt) in impulse and O(dt²) elsewhere.
 """
 
 import math
-import os
-import tempfile
 
 import numpy as np
 
@@ -39,6 +37,7 @@ from femoat.opensees.transient import (  # noqa: F401  (OpenSeesFailure, read_bi
     check_history,
     checked_duration,
     read_binary,
+    recorded_analysis,
     run_twin,
     set_initial_state,
     timed_analysis,
@@ -159,26 +158,22 @@ def opensees_run(model, motion, dt, duration=None, v0=None, tol=1e-10, max_iter=
 
 
 def _step_loop(ops, nodes, n_steps, dt, ns, nw, model):
-    """``analyze(n_steps, dt)`` in one call with binary recorders (the cheapest way to keep
-    histories in OpenSees: a Python loop reading results after every step costs more than
-    the analysis itself); returns the histories and the process time of the analysis."""
-    tags = [CONTACT_ELE + i for i in range(nw)]
+    """``analyze(n_steps, dt)`` with binary recorders (:func:`recorded_analysis`) of every
+    node's displacement, the building's accelerations and the contact forces; returns the
+    histories in femoat's DOFs and the process time of the analysis."""
     x0 = _to_dofs(np.array([ops.nodeDisp(nd, 1) for nd in nodes]), model, ns)
     a0 = np.array([ops.nodeAccel(nd, 1) for nd in nodes[:ns]])
-    with tempfile.TemporaryDirectory(prefix="femoat_opensees_") as folder:
-        paths = [os.path.join(folder, name) for name in ("disp.bin", "accel.bin", "force.bin")]
-        ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, "disp")
-        ops.recorder("Node", "-binary", paths[1], "-node", *nodes[:ns], "-dof", 1, "accel")
-        if nw:
-            ops.recorder("Element", "-binary", paths[2], "-ele", *tags, "material", "1", "stress")
-        status, cpu = timed_analysis(ops, n_steps, dt)
-        disp = read_binary(paths[0], 1 + len(nodes))
-        acc = read_binary(paths[1], ns)
-        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
-    m = min(disp.shape[0], acc.shape[0], force.shape[0])
-    x = np.vstack([x0, _to_dofs(disp[:m, 1:], model, ns)])  # femoat's DOFs
-    acc = np.vstack([a0, acc[:m]])
-    f = np.vstack([np.zeros(nw), force[:m]])
+    recorders = [(1 + len(nodes), "Node", "-time", "-node", *nodes, "-dof", 1, "disp"),
+                 (ns, "Node", "-node", *nodes[:ns], "-dof", 1, "accel")]
+    if nw:
+        recorders.append((nw, "Element", "-ele", *[CONTACT_ELE + i for i in range(nw)],
+                          "material", "1", "stress"))
+    status, cpu, (disp, acc, *force) = recorded_analysis(ops, n_steps, dt, recorders)
+    m = disp.shape[0]
+    force = -force[0] if nw else np.zeros((m, 0))
+    x = np.vstack([x0, _to_dofs(disp[:, 1:], model, ns)])  # femoat's DOFs
+    acc = np.vstack([a0, acc])
+    f = np.vstack([np.zeros(nw), force])
     check_history(np.all(np.isfinite(x), axis=1) & np.all(np.isfinite(f), axis=1), status, m,
                   n_steps, dt, hint=": below ~1e-9 in, round-off can keep a stiff contact's "
                   "increments from meeting it")

@@ -48,8 +48,6 @@ not femoat's wall friction:
 """
 
 import math
-import os
-import tempfile
 
 import numpy as np
 
@@ -58,10 +56,9 @@ from femoat.opensees.tags import BASE, BEARING_ELE, CONTACT_ELE
 from femoat.opensees.transient import (
     check_history,
     checked_duration,
-    read_binary,
+    recorded_analysis,
     run_twin,
     set_initial_state,
-    timed_analysis,
 )
 from femoat.opensees.twin import twin_commands, twin_rows
 from femoat.opensees.wall_chain import wall_chain_nodes
@@ -160,9 +157,10 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
 
 
 def _step_loop(ops, model, n_steps, dt):
-    """``analyze(n_steps, dt)`` with binary recorders (as the 1D twin): displacements of every
-    node in x and y, accelerations of the building's nodes, contact forces, the base mat's
-    velocity and, under a slider, its friction force (the basic shear forces)."""
+    """``analyze(n_steps, dt)`` with binary recorders (:func:`recorded_analysis`, as the 1D
+    twin): displacements of every node in x and y, accelerations of the building's nodes,
+    contact forces, the base mat's velocity and, under a slider, its friction force (the basic
+    shear forces)."""
     nf = len(model.building.floor_weights) + 1
     nw = len(model.walls)
     slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
@@ -173,32 +171,26 @@ def _step_loop(ops, model, n_steps, dt):
     a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
     v0 = np.array([ops.nodeVel(BASE, d) for d in (1, 2)])
     q0 = np.array(ops.eleResponse(BEARING_ELE, "basicForce")[1:3]) if slider else np.zeros(2)
-    with tempfile.TemporaryDirectory(prefix="femoat_opensees_plan_") as folder:
-        paths = [os.path.join(folder, name)
-                 for name in ("disp.bin", "accel.bin", "force.bin", "vel.bin", "slider.bin")]
-        ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, 2, "disp")
-        ops.recorder("Node", "-binary", paths[1], "-node", *struct, "-dof", 1, 2, "accel")
-        ops.recorder("Node", "-binary", paths[3], "-node", BASE, "-dof", 1, 2, "vel")
-        if nw:
-            ops.recorder("Element", "-binary", paths[2], "-ele",
-                         *[CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
-        if slider:
-            ops.recorder("Element", "-binary", paths[4], "-ele", BEARING_ELE, "basicForce")
-        status, cpu = timed_analysis(ops, n_steps, dt)
-        disp = read_binary(paths[0], 1 + 2 * len(nodes))
-        acc = read_binary(paths[1], 2 * nf)
-        vel = read_binary(paths[3], 2)
-        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
-        # basic shear forces: local y, z are the global x, y (the slider's orientation)
-        shear = read_binary(paths[4], 6)[:, 1:3] if slider else np.zeros((disp.shape[0], 2))
-    m = min(disp.shape[0], acc.shape[0], force.shape[0], vel.shape[0], shear.shape[0])
-    x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
-    acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
-    f = np.vstack([np.zeros(nw), force[:m]])
+    recorders = [(1 + 2 * len(nodes), "Node", "-time", "-node", *nodes, "-dof", 1, 2, "disp"),
+                 (2 * nf, "Node", "-node", *struct, "-dof", 1, 2, "accel"),
+                 (2, "Node", "-node", BASE, "-dof", 1, 2, "vel")]
+    if nw:
+        recorders.append((nw, "Element", "-ele", *[CONTACT_ELE + i for i in range(nw)],
+                          "material", "1", "stress"))
+    if slider:
+        recorders.append((6, "Element", "-ele", BEARING_ELE, "basicForce"))
+    status, cpu, (disp, acc, vel, *rest) = recorded_analysis(ops, n_steps, dt, recorders)
+    m = disp.shape[0]
+    force = -rest.pop(0) if nw else np.zeros((m, 0))
+    # basic shear forces: local y, z are the global x, y (the slider's orientation)
+    shear = rest.pop(0)[:, 1:3] if slider else None
+    x = np.vstack([x0, disp[:, 1:]]).reshape(m + 1, len(nodes), 2)
+    acc = np.vstack([a0, acc]).reshape(m + 1, nf, 2)
+    f = np.vstack([np.zeros(nw), force])
     check_history(np.all(np.isfinite(x), axis=(1, 2)) & np.all(np.isfinite(f), axis=1), status,
                   m, n_steps, dt)
-    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel[:m]]),
-                friction=np.vstack([q0, shear[:m]]) if slider else None)
+    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel]),
+                friction=np.vstack([q0, shear]) if slider else None)
 
 
 def _summarise(hist, model, pair, dt, normal, cmds):
