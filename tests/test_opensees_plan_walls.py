@@ -1,5 +1,5 @@
 """Modal (finite-element) walls in the OpenSees twins: the chain of rescaled modes with
-inerters (femoat.opensees.building.wall_chain_commands), in 1D against femoat's solver and in
+inerters (femoat.opensees.wall_chain.wall_chain_commands), in 1D against femoat's solver and in
 3D against the 1D twin."""
 
 from pathlib import Path

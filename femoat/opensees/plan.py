@@ -2,28 +2,17 @@
 
 :func:`opensees_plan_run` builds the model in openseespy, runs it at a fixed step and returns
 its histories; :func:`opensees_plan_commands` returns the model as a list of openseespy calls.
-It is :mod:`femoat.opensees.building` (the 1D twin: its story materials, dashpots, contact-law
-chains and Newmark set-up) with every element acting along a plan direction.
+The model is the one twin builder's in plan (:mod:`femoat.opensees.twin`, where the OpenSees
+model is written once: ``-ndm 3 -ndf 6``, two ``UniformExcitation`` patterns of the pair's
+applied components a_x, a_y, the isolator kind's 3D element and a slider's gravity step; the
+walls' chains along their axes: :mod:`femoat.opensees.wall_chain`), the 1D twin's
+(:mod:`femoat.opensees.building`) with every element acting along a plan direction.
 
-OpenSees model (written once here)
-----------------------------------
-* ``-ndm 3 -ndf 6``; every node's unused DOFs fixed: floors move in x, y (DOFs 1, 2); the base
-  mat in x, y and, under a friction pendulum, z (the bearing's axial DOF, massless); a wall
-  node along its normal only. Displacements are relative to the ground; two
-  ``UniformExcitation`` patterns (directions 1 and 2, ``Path`` series of the pair's applied
-  components a_x, a_y [in/s²] at its dt, zero after the last sample) load every mass.
-* Nodes: 1 ground (fixed); 2 base mat; 3, 4, … floors bottom to top; the i-th wall of
-  ``model.walls`` (order +x, −x, +y, −y) is the 1D twin's chain of nodes, the first one 100 + i
-  (:func:`~femoat.opensees.building.wall_chain_nodes`), the last the impact point. An SDOF
-  wall node's displacement along its axis is sign·q, q positive away from the building (sign
-  +1 for +x and +y).
-* Isolator, ground → base mat: the bidirectional friction pendulum is ``flatSliderBearing``
-  (``Coulomb`` friction μ, kInit = μW/u_y, a stiff axial material, rotations and torsion
-  elastic and held) in parallel with a ``zeroLength`` W/R spring in x and y; the normal force
-  N = W comes from a static gravity step (load −W on the base mat's z) held constant
-  (``loadConst``) before the transient. Along one axis the bearing's circular Coulomb rule is
-  the 1D twin's ``ElasticPP`` (μW/u_y, u_y) exactly. An Elastic isolator is a ``zeroLength``
-  spring in x and y.
+How exact the friction pendulum's 3D twin is:
+
+* Constant μ: the ``flatSliderBearing`` under N = W with ``Coulomb`` friction and kInit =
+  μW/u_y; along one axis its circular Coulomb rule is the 1D twin's ``ElasticPP`` (μW/u_y, u_y)
+  exactly.
 * Velocity-dependent friction (``mu_fast``): the ``VelDependent`` friction model, μ = μ_fast −
   (μ_fast − μ_slow)·exp(−a·|v|) at the slider's trial velocity, with kInit = μ_slow·W/u_y. How
   exact: while the bearing slides both resist with μ(|v|)·W along the sliding direction
@@ -34,19 +23,7 @@ OpenSees model (written once here)
   μ(|v|)·N/kInit). No kInit removes that (it is a different hysteretic rule); measured against
   femoat's 1D solver along x (paper building, μ 0.04/0.10, a = 1 s/in, far-field record 1 ×2,
   6 s): peak base displacement 7e-4 apart, the history 4e-3 of the peak, drifts 0.6-1 %
-  (``tests/test_opensees_plan_friction.py``). With constant μ the twin is exact.
-* Story k, floor k−1 → floor k: one ``zeroLength`` with two materials (``-dir 1 2``), each the
-  1D twin's story material in ``Parallel`` with its dashpot ``Elastic 0 c`` (c = β·k0) and, with
-  P-Delta, ``Elastic −P/h`` (the linear geometric stiffness femoat adds to K).
-* Wall i: the 1D twin's chain of its modes along the wall's axis
-  (:func:`~femoat.opensees.building.wall_chain_commands`: an SDOF wall is one node with
-  ``Elastic K1 C_imp`` to the ground; a modal wall adds ``InertiaTruss`` inerters and a
-  ``Plain`` ground-load correction of the axis' component), chain node j at j along the axis;
-  and the contact law's twin
-  (:func:`~femoat.opensees.single_impact.opensees_contact_material`, compression convention)
-  base → impact node for a + side, impact node → base for a − side, along the wall's axis.
-* Analysis as the 1D twin: initial accelerations at equilibrium, Newmark average acceleration,
-  Newton, ``NormDispIncr``, one ``analyze(n, dt)`` with ``-binary`` recorders.
+  (``tests/test_opensees_plan_friction.py``).
 
 No twin (refused with a sentence): wall friction (μ_w > 0). What OpenSees offers, and why it is
 not femoat's wall friction:
@@ -71,36 +48,23 @@ not femoat's wall friction:
 """
 
 import math
-import os
-import tempfile
 
 import numpy as np
 
 from femoat.ground_motions.pair import RecordPair
-from femoat.opensees.building import (
-    story_material,
-    wall_chain_commands,
-    wall_chain_nodes,
-    wall_chain_transform,
-    wall_load_commands,
-)
+from femoat.opensees.tags import BASE, BEARING_ELE, CONTACT_ELE
 from femoat.opensees.transient import (
     check_history,
     checked_duration,
-    read_binary,
+    recorded_analysis,
     run_twin,
     set_initial_state,
-    timed_analysis,
 )
-from femoat.opensees.single_impact import opensees_contact_material
-from femoat.bearings import registry as bearing_registry
+from femoat.opensees.twin import twin_commands, twin_rows
+from femoat.opensees.wall_chain import wall_chain_nodes
 from femoat.plan.bearing import BidirectionalFrictionPendulum
 from femoat.plan.model import PlanModel
 from femoat.units import G
-
-_GROUND, _BASE = 1, 2  # the 1D twin's tags (its wall chains hang from _GROUND)
-_BEARING_ELE, _ISO_SPRING_ELE, _STORY_ELE, _CONTACT_ELE = 1, 2, 10, 200
-_GRAVITY = 10
 
 
 def _check(model, pair):
@@ -116,114 +80,16 @@ def _check(model, pair):
                              "friction=0.0 to cross-check.")
 
 
-def plan_twin(kind):
-    """The module of bearing kind ``kind`` (:mod:`femoat.bearings`), which builds its 3D twin
-    (``opensees_plan_element``, ``OPENSEES_AXIAL_LOAD``); ValueError when it has none."""
-    mod = bearing_registry.module(kind)
-    if not hasattr(mod, "opensees_plan_element"):
-        raise ValueError(f"isolator: the {mod.KEY!r} bearing has no OpenSees twin.")
-    return mod
-
-
-def _story_top(mat, dashpot, geometric, tag):
-    """Commands for a story material with its dashpot and P-Delta spring in Parallel; returns
-    (commands, tag of the top material, next free tag)."""
-    spring = story_material(mat)
-    cmds, parts = [("uniaxialMaterial", spring[0], tag, *spring[1:])], [tag]
-    for k, c in ((0.0, dashpot), (geometric, 0.0)):
-        if k != 0.0 or c != 0.0:
-            parts.append(tag + len(parts))
-            cmds.append(("uniaxialMaterial", "Elastic", parts[-1], k, c))
-    if len(parts) == 1:
-        return cmds, tag, tag + 1
-    top = tag + len(parts)
-    cmds.append(("uniaxialMaterial", "Parallel", top, *parts))
-    return cmds, top, top + 1
-
-
-def _nodes(model):
-    """The twin's (node, OpenSees DOF) rows and T (rows × femoat DOFs): the node displacements
-    are T·u for femoat's DOFs u (layout order); a wall's rows are its chain's nodes along its
-    axis (:func:`~femoat.opensees.building.wall_chain_transform`)."""
-    rows = []
-    for k in range(len(model.building.floor_weights) + 1):
-        rows += [(_BASE + k, 1), (_BASE + k, 2)]
-    ns = len(rows)
-    blocks = [wall_chain_transform(w.wall, w.sign) for w in model.walls]
-    n = ns + sum(len(b) for b in blocks)
-    T = np.zeros((n, n))
-    T[:ns, :ns] = np.eye(ns)
-    col = ns
-    for i, (w, block) in enumerate(zip(model.walls, blocks)):
-        rows += [(node, w.axis + 1) for node in wall_chain_nodes(i, w.wall)]
-        T[col:col + len(block), col:col + len(block)] = block
-        col += len(block)
-    return rows, T
-
-
 def opensees_plan_commands(model, pair):
     """The openseespy calls that build ``model`` under ``pair``: a list of ``(function name,
     *args)`` tuples: the model, the gravity step (under a friction pendulum, ending with
-    ``loadConst`` and ``wipeAnalysis``) and the two excitation patterns; no transient analysis.
+    ``loadConst`` and ``wipeAnalysis``) and the two excitation patterns; no transient analysis:
+    the one builder :func:`~femoat.opensees.twin.twin_commands` in plan.
 
     Raises ValueError for what has no OpenSees twin (module docstring).
     """
     _check(model, pair)
-    b = model.building
-    iso = b.isolator
-    kind = None if iso is None else bearing_registry.kind_of(iso)
-    twin = None if kind is None else plan_twin(kind)
-    slider = twin is not None and twin.OPENSEES_AXIAL_LOAD
-    cmds = [("wipe",), ("model", "basic", "-ndm", 3, "-ndf", 6),
-            ("node", _GROUND, 0.0, 0.0, 0.0), ("fix", _GROUND, 1, 1, 1, 1, 1, 1)]
-    for k, w in enumerate([b.base_weight, *b.floor_weights]):
-        z_free = 0 if (k == 0 and slider) else 1
-        cmds += [("node", _BASE + k, 0.0, 0.0, 0.0),
-                 ("fix", _BASE + k, 0, 0, z_free, 1, 1, 1),
-                 ("mass", _BASE + k, w / G, w / G, 0.0, 0.0, 0.0, 0.0)]
-    mat = 1
-    if twin is not None:  # the bearing kind's own 3D twin (elements _BEARING_ELE, the next)
-        made, mat = twin.opensees_plan_element(iso, _BEARING_ELE, _GROUND, _BASE, mat)
-        cmds += made
-    elif iso is not None:  # Elastic
-        cmds += [("uniaxialMaterial", "Elastic", mat, iso.k),
-                 ("element", "zeroLength", _ISO_SPRING_ELE, _GROUND, _BASE,
-                  "-mat", mat, mat, "-dir", 1, 2)]
-        mat += 1
-    beta, geometric = b.story_damping_beta, b.geometric_stiffnesses()
-    for k in range(len(b.floor_weights)):
-        tops = []
-        for stories in (b.stories_x, b.stories_y):
-            story = stories[k]
-            made, top, mat = _story_top(story, beta * story.initial_stiffness, geometric[k], mat)
-            cmds += made
-            tops.append(top)
-        cmds.append(("element", "zeroLength", _STORY_ELE + k, _BASE + k, _BASE + k + 1,
-                     "-mat", *tops, "-dir", 1, 2))
-    loads = []
-    for i, w in enumerate(model.walls):
-        made, node, mat, load = wall_chain_commands(i, w.wall, 3, w.axis, mat)
-        contact = opensees_contact_material(w.law, w.gap)
-        ni, nj = (_BASE, node) if w.sign > 0 else (node, _BASE)
-        cmds += [*made, ("uniaxialMaterial", contact[0], mat, *contact[1:]),
-                 ("element", "zeroLength", _CONTACT_ELE + i, ni, nj, "-mat", mat,
-                  "-dir", w.axis + 1)]
-        mat += 1
-        loads.append(load)
-    if slider:  # N = W on the slider: a static gravity step, then held constant
-        cmds += [("timeSeries", "Constant", _GRAVITY), ("pattern", "Plain", _GRAVITY, _GRAVITY),
-                 ("load", _BASE, 0.0, 0.0, -iso.W, 0.0, 0.0, 0.0),
-                 ("constraints", "Plain"), ("numberer", "Plain"), ("system", "BandGeneral"),
-                 ("test", "NormDispIncr", 1e-12, 20), ("algorithm", "Newton"),
-                 ("integrator", "LoadControl", 1.0), ("analysis", "Static"), ("analyze", 1),
-                 ("loadConst", "-time", 0.0), ("wipeAnalysis",)]
-    accel = [[float(a) for a in row] for row in np.asarray(pair.accel_g) * G]
-    for d in (1, 2):
-        cmds += [("timeSeries", "Path", d, "-dt", float(pair.dt), "-values", *accel[d - 1]),
-                 ("pattern", "UniformExcitation", d, d, "-accel", d)]
-    for i, (w, load) in enumerate(zip(model.walls, loads)):
-        cmds += wall_load_commands(i, load, accel[w.axis], pair.dt, 3, w.axis)
-    return cmds
+    return twin_commands(model, pair)
 
 
 def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_iter=50):
@@ -280,8 +146,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
 
     def initial(ops):
         if isinstance(model.building.isolator, BidirectionalFrictionPendulum):  # N = W
-            normal.append(-ops.eleResponse(_BEARING_ELE, "basicForce")[0])
-        rows, T = _nodes(model)
+            normal.append(-ops.eleResponse(BEARING_ELE, "basicForce")[0])
+        rows, T = twin_rows(model)
         set_initial_state(ops, rows, T @ v, T @ a)
 
     hist = run_twin(cmds, initial, lambda ops: _step_loop(ops, model, n_steps, dt), tol,
@@ -291,45 +157,40 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
 
 
 def _step_loop(ops, model, n_steps, dt):
-    """``analyze(n_steps, dt)`` with binary recorders (as the 1D twin): displacements of every
-    node in x and y, accelerations of the building's nodes, contact forces, the base mat's
-    velocity and, under a slider, its friction force (the basic shear forces)."""
+    """``analyze(n_steps, dt)`` with binary recorders (:func:`recorded_analysis`, as the 1D
+    twin): displacements of every node in x and y, accelerations of the building's nodes,
+    contact forces, the base mat's velocity and, under a slider, its friction force (the basic
+    shear forces)."""
     nf = len(model.building.floor_weights) + 1
     nw = len(model.walls)
     slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
-    struct = [_BASE + k for k in range(nf)]
+    struct = [BASE + k for k in range(nf)]
     nodes = struct + [node for i, w in enumerate(model.walls)
                       for node in wall_chain_nodes(i, w.wall)]
     x0 = np.array([[ops.nodeDisp(nd, d) for d in (1, 2)] for nd in nodes]).reshape(-1)
     a0 = np.array([[ops.nodeAccel(nd, d) for d in (1, 2)] for nd in struct]).reshape(-1)
-    v0 = np.array([ops.nodeVel(_BASE, d) for d in (1, 2)])
-    q0 = np.array(ops.eleResponse(_BEARING_ELE, "basicForce")[1:3]) if slider else np.zeros(2)
-    with tempfile.TemporaryDirectory(prefix="femoat_opensees_plan_") as folder:
-        paths = [os.path.join(folder, name)
-                 for name in ("disp.bin", "accel.bin", "force.bin", "vel.bin", "slider.bin")]
-        ops.recorder("Node", "-binary", paths[0], "-time", "-node", *nodes, "-dof", 1, 2, "disp")
-        ops.recorder("Node", "-binary", paths[1], "-node", *struct, "-dof", 1, 2, "accel")
-        ops.recorder("Node", "-binary", paths[3], "-node", _BASE, "-dof", 1, 2, "vel")
-        if nw:
-            ops.recorder("Element", "-binary", paths[2], "-ele",
-                         *[_CONTACT_ELE + i for i in range(nw)], "material", "1", "stress")
-        if slider:
-            ops.recorder("Element", "-binary", paths[4], "-ele", _BEARING_ELE, "basicForce")
-        status, cpu = timed_analysis(ops, n_steps, dt)
-        disp = read_binary(paths[0], 1 + 2 * len(nodes))
-        acc = read_binary(paths[1], 2 * nf)
-        vel = read_binary(paths[3], 2)
-        force = -read_binary(paths[2], nw) if nw else np.zeros((disp.shape[0], 0))
-        # basic shear forces: local y, z are the global x, y (the slider's orientation)
-        shear = read_binary(paths[4], 6)[:, 1:3] if slider else np.zeros((disp.shape[0], 2))
-    m = min(disp.shape[0], acc.shape[0], force.shape[0], vel.shape[0], shear.shape[0])
-    x = np.vstack([x0, disp[:m, 1:]]).reshape(m + 1, len(nodes), 2)
-    acc = np.vstack([a0, acc[:m]]).reshape(m + 1, nf, 2)
-    f = np.vstack([np.zeros(nw), force[:m]])
+    v0 = np.array([ops.nodeVel(BASE, d) for d in (1, 2)])
+    q0 = np.array(ops.eleResponse(BEARING_ELE, "basicForce")[1:3]) if slider else np.zeros(2)
+    recorders = [(1 + 2 * len(nodes), "Node", "-time", "-node", *nodes, "-dof", 1, 2, "disp"),
+                 (2 * nf, "Node", "-node", *struct, "-dof", 1, 2, "accel"),
+                 (2, "Node", "-node", BASE, "-dof", 1, 2, "vel")]
+    if nw:
+        recorders.append((nw, "Element", "-ele", *[CONTACT_ELE + i for i in range(nw)],
+                          "material", "1", "stress"))
+    if slider:
+        recorders.append((6, "Element", "-ele", BEARING_ELE, "basicForce"))
+    status, cpu, (disp, acc, vel, *rest) = recorded_analysis(ops, n_steps, dt, recorders)
+    m = disp.shape[0]
+    force = -rest.pop(0) if nw else np.zeros((m, 0))
+    # basic shear forces: local y, z are the global x, y (the slider's orientation)
+    shear = rest.pop(0)[:, 1:3] if slider else None
+    x = np.vstack([x0, disp[:, 1:]]).reshape(m + 1, len(nodes), 2)
+    acc = np.vstack([a0, acc]).reshape(m + 1, nf, 2)
+    f = np.vstack([np.zeros(nw), force])
     check_history(np.all(np.isfinite(x), axis=(1, 2)) & np.all(np.isfinite(f), axis=1), status,
                   m, n_steps, dt)
-    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel[:m]]),
-                friction=np.vstack([q0, shear[:m]]) if slider else None)
+    return dict(x=x, acc=acc, f=f, cpu=cpu, vel=np.vstack([v0, vel]),
+                friction=np.vstack([q0, shear]) if slider else None)
 
 
 def _summarise(hist, model, pair, dt, normal, cmds):

@@ -1,10 +1,11 @@
 """The transient analysis every OpenSees twin runs (1D and 3D): its arguments checked, the model
 built with OpenSees' messages captured, the initial state set, Newmark's fixed steps in one
-``analyze`` call, and a failed or non-finite history turned into :class:`OpenSeesFailure`.
+``analyze`` call with ``-binary`` recorders (:func:`recorded_analysis`), and a failed or
+non-finite history turned into :class:`OpenSeesFailure`.
 
-What differs between the twins (the model's commands, which node DOFs carry the initial
-velocities and accelerations, the recorders and how their columns map back to femoat's DOFs)
-is passed in; :func:`femoat.opensees.building.opensees_run` and
+What differs between the twins (the model's commands, from the one builder
+:mod:`femoat.opensees.twin`; which node DOFs carry the initial velocities and accelerations;
+which recorders, and how their columns map back to femoat's DOFs) is passed in; :func:`femoat.opensees.building.opensees_run` and
 :func:`femoat.opensees.plan.opensees_plan_run` are the two callers.
 """
 
@@ -87,6 +88,23 @@ def timed_analysis(ops, n_steps, dt):
     status = ops.analyze(n_steps, dt)
     ops.remove("recorders")
     return status, _time.process_time() - cpu0
+
+
+def recorded_analysis(ops, n_steps, dt, recorders):
+    """``analyze(n_steps, dt)`` in one call (:func:`timed_analysis`) with ``-binary`` recorders
+    (the cheapest way to keep histories in OpenSees: a Python loop reading results after every
+    step costs more than the analysis itself). ``recorders``: one ``(columns, kind, *args)`` per
+    recorder, ``ops.recorder(kind, "-binary", file, *args)`` writing ``columns`` values a step.
+    Returns (OpenSees' status, process time of the call [s], one array (steps, columns) per
+    recorder, all cut to the steps every one of them holds)."""
+    with tempfile.TemporaryDirectory(prefix="femoat_opensees_") as folder:
+        paths = [os.path.join(folder, f"{k}.bin") for k in range(len(recorders))]
+        for path, (_, kind, *args) in zip(paths, recorders):
+            ops.recorder(kind, "-binary", path, *args)
+        status, cpu = timed_analysis(ops, n_steps, dt)
+        rows = [read_binary(path, columns) for path, (columns, *_) in zip(paths, recorders)]
+    done = min(r.shape[0] for r in rows)
+    return status, cpu, [r[:done] for r in rows]
 
 
 def check_history(finite, status, done, n_steps, dt, hint=""):
