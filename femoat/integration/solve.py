@@ -260,9 +260,9 @@ def _check_plan_method(name, packed):
     """Refuse an open-phase method that is first order on the plan bearings of ``packed``."""
     rated = [bearing_registry.has_rate_form(bearing_registry.kinds()[k])
              for k in np.unique(packed.bearing_kind)]
-    if name == "dp5":
+    if name in ("dp5", "tsit5"):
         raise ValueError(
-            "method = 'dp5' on plan bearings: its explicit stages read a bearing's friction "
+            f"method = {name!r} on plan bearings: its explicit stages read a bearing's friction "
             "direction from a path guessed between stage values, which on a curved orbit is "
             "only first order in the step (a 1 % error in the peak base displacement at rtol "
             "1e-8). Use Integrator(method='ark5') (the fifth-order step that carries the "
@@ -648,7 +648,8 @@ def _failure_message(packed, t, u, v, closed, integ, stalled=False):
         )
     if methods.module(integ.method).EXPLICIT and not closed.any():
         return (
-            f"The explicit step of the open phase (method 'dp5') gave no finite state at "
+            f"The explicit step of the open phase (method {integ.method!r}) gave no finite "
+            f"state at "
             f"t = {t:.6g} s (all gaps open; base displacement {u[0]:.4g} in, velocity "
             f"{v[0]:.4g} in/s) even at the smallest step {integ.min_step:g} s: the building "
             "runs away faster than the runaway bounds of femoat.collapse end it (a negative "

@@ -131,7 +131,7 @@ def integrator_for(model, table):
     if isinstance(model, PlanModel):
         default = plan_method(model)
         table.setdefault("method", default)
-        if table["method"] == "dp5" or (table["method"] == "ark5" and default != "ark5"):
+        if table["method"] in ("dp5", "tsit5") or (table["method"] == "ark5" and default != "ark5"):
             raise ValueError(
                 f"[solver] method = {table['method']!r}: on this plan isolator its explicit "
                 "stages would read the friction direction from a path between stage values, "

@@ -21,9 +21,9 @@ method.
 """
 
 from femoat.compilation.jit import njit
-from femoat.integration.methods import ark5, dp5, newmark
+from femoat.integration.methods import ark5, dp5, newmark, tsit5
 
-MODULES = (newmark, dp5, ark5)
+MODULES = (newmark, dp5, ark5, tsit5)
 """The methods, by code."""
 NAMES = tuple(m.NAME for m in MODULES)
 """The methods' names, by code (``Integrator(method=...)``)."""
@@ -52,13 +52,15 @@ def module(name):
 @njit(cache=True, inline="always")
 def step(code, hh, ag1, any_closed, model, state, settings, work):
     """The method ``code``'s trial step: (solved, scaled error). ark5 takes dp5's step where no
-    friction state moves (``ark5.plan``), through the one inlined copy of dp5's step here."""
+    friction state moves (``ark5.plan``), through the one inlined copy of the explicit pairs'
+    step here, which tsit5 takes with its own tableau."""
     if code == 0:
         return newmark.step(hh, ag1, any_closed, model, state, settings, work)
     how = ark5.plan(model, state, work) if code == 2 else ark5.DP5_STEP
     if how != ark5.COUPLED:
-        solved, err = dp5.step(hh, ag1, any_closed, model, state, settings, work)
-        if code == 1 or how == ark5.DP5_STEP or (solved and ark5.rates_vanish(model, state, work)):
+        pair = tsit5.PAIR if code == 3 else dp5.PAIR
+        solved, err = dp5.pair_step(pair, hh, ag1, model, state, settings, work)
+        if code != 2 or how == ark5.DP5_STEP or (solved and ark5.rates_vanish(model, state, work)):
             return solved, err
     return ark5.step(hh, ag1, any_closed, model, state, settings, work)
 
@@ -68,7 +70,7 @@ def retry(code, t, hh, h, model, state, settings, work, rec):
     """The method ``code``'s step after one it could not solve: (h, failed)."""
     if code == 2:
         return ark5.retry(t, hh, h, model, state, settings, work, rec)
-    if code == 1:
+    if code == 1 or code == 3:
         return dp5.retry(t, hh, h, model, state, settings, work, rec)
     return newmark.retry(t, hh, h, model, state, settings, work, rec)
 
@@ -78,7 +80,7 @@ def next_step(code, hh, err, h_min):
     """The method ``code``'s step after an accepted one."""
     if code == 2:
         return ark5.next_step(hh, err, h_min)
-    if code == 1:
+    if code == 1 or code == 3:
         return dp5.next_step(hh, err, h_min)
     return newmark.next_step(hh, err, h_min)
 

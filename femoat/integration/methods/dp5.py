@@ -214,10 +214,14 @@ def accel_row(i, nb, Minv, q):
 
 
 @njit(cache=True, inline="always")
-def _stages(hh, ag0, ag1, nb, model, state, work):
-    """The seven stages (``work.kv``, ``work.ka``); after it
-    ``work.u``, ``work.v`` (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F``
-    and the tangents ``KT``, ``CT`` its forces. False when a stage is not finite."""
+def _stages(A, C, hh, ag0, ag1, nb, model, state, work):
+    """The seven stages of the pair with coefficients ``A`` (its last row the fifth-order
+    weights) and stage times ``C`` (``work.kv``, ``work.ka``); after it ``work.u``, ``work.v``
+    (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F`` and the tangents ``KT``,
+    ``CT`` its forces. False when a stage is not finite. The stages before the last evaluate
+    the building's rows only (:func:`~femoat.integration.forces._internal_force`'s
+    ``stage_only``: the walls are advanced exactly and every gap is open); the last one, the
+    step's end, evaluates everything."""
     Minv, r = model.Minv, model.r
     kv, ka = work.kv, work.ka
     u0, v0 = state.u, state.v
@@ -233,16 +237,17 @@ def _stages(hh, ag0, ag1, nb, model, state, work):
             su = 0.0
             sv = 0.0
             for j in range(s):
-                aij = DP_A[s, j]
+                aij = A[s, j]
                 su += aij * kv[j, i]
                 sv += aij * ka[j, i]
             work.u[i] = u0[i] + hh * su
             work.v[i] = v0[i] + hh * sv
+        last = s == N_STAGES - 1
         _internal_force(work.u, work.v, model, state, work, trial_outputs(work),
-                        s == N_STAGES - 1, nb, u0, v0, DP_C[s] * hh)
+                        last, nb, u0, v0, C[s] * hh, not last)
         ag = work.ag_stage
         for k in range(ag.size):
-            ag[k] = ag0[k] + DP_C[s] * (ag1[k] - ag0[k])
+            ag[k] = ag0[k] + C[s] * (ag1[k] - ag0[k])
         stage_load(r, ag, nb, work)
         for i in range(nb):
             acc = accel_row(i, nb, Minv, work.b)
@@ -284,6 +289,10 @@ def stage_energy(B, CS, hh, ag0, ag1, nb, model, work):
 
 DP_B = DP_A[N_STAGES - 1, :N_STAGES - 1].copy()
 """The fifth-order weights of the stages before the last (whose weight is zero)."""
+PAIR = (DP_A, DP_C, DP_B, DP_E)
+"""The pair as :func:`explicit_step` reads it: (a_sj with the weights as the last row, c_s,
+the weights b of the stages before the last, b − b̂). Another seven-stage FSAL pair of order
+5(4) is another such tuple on the same compiled step (:mod:`~femoat.integration.methods.tsit5`)."""
 
 
 @njit(cache=True, inline="always")
@@ -343,31 +352,33 @@ def acceleration_error(err, nb, model, settings, work):
 
 
 @njit(cache=True, inline="always")
-def _error(hh, nb, model, settings, work):
-    """The scaled error of the embedded fourth-order solution (1 = at the tolerance): each
-    DOF's displacement error and its acceleration error M⁻¹·(K_T·e_u + C_T·e_v)."""
-    err = displacement_error(DP_E, hh, nb, settings, work)
+def _error(E, hh, nb, model, settings, work):
+    """The scaled error of the embedded fourth-order solution (weights b − b̂ ``E``; 1 = at the
+    tolerance): each DOF's displacement error and its acceleration error
+    M⁻¹·(K_T·e_u + C_T·e_v)."""
+    err = displacement_error(E, hh, nb, settings, work)
     force_error(nb, work)
     return acceleration_error(err, nb, model, settings, work)
 
 
 @njit(cache=True, inline="always")
-def explicit_step(hh, ag1, model, state, settings, work):
-    """The trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its end) while
-    every gap is open: ``work`` holds the end state, its forces, the contacts' indentations and
-    the step's energy increments (``de``). Returns the scaled error (inf: a stage was
-    not finite, the step must shrink)."""
+def explicit_step(pair, hh, ag1, model, state, settings, work):
+    """The trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its end) of the
+    explicit pair ``pair`` (:data:`PAIR`) while every gap is open: ``work`` holds the end state,
+    its forces, the contacts' indentations and the step's energy increments (``de``). Returns
+    the scaled error (inf: a stage was not finite, the step must shrink)."""
+    A, C, B, E = pair
     nb = settings.n_explicit
     ag0 = state.ag_now
     work.de[E_INPUT] = 0.0
     work.de[E_VISCOUS] = 0.0
-    if not _stages(hh, ag0, ag1, nb, model, state, work):
+    if not _stages(A, C, hh, ag0, ag1, nb, model, state, work):
         return np.inf
     walls_exact(hh, ag0, ag1, nb, model, state, work)
-    stage_energy(DP_B, DP_C, hh, ag0, ag1, nb, model, work)
+    stage_energy(B, C, hh, ag0, ag1, nb, model, work)
     if not open_end(model, work):
         return np.inf
-    return _error(hh, nb, model, settings, work)
+    return _error(E, hh, nb, model, settings, work)
 
 
 @njit(cache=True, inline="always")
@@ -392,9 +403,16 @@ def open_end(model, work):
 
 @njit(cache=True, inline="always")
 def step(hh, ag1, any_closed, model, state, settings, work):
-    """(the step has a finite state, its scaled error): :func:`explicit_step` (only ever called
-    while every gap is open)."""
-    err = explicit_step(hh, ag1, model, state, settings, work)
+    """(the step has a finite state, its scaled error): :func:`explicit_step` of this pair
+    (only ever called while every gap is open)."""
+    return pair_step(PAIR, hh, ag1, model, state, settings, work)
+
+
+@njit(cache=True, inline="always")
+def pair_step(pair, hh, ag1, model, state, settings, work):
+    """``step`` of the explicit pair ``pair``: the loop's dispatcher calls this once, with the
+    pair of the method it runs, so that one copy of the step serves every such pair."""
+    err = explicit_step(pair, hh, ag1, model, state, settings, work)
     return np.isfinite(err), err
 
 
