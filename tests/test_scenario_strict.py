@@ -53,9 +53,10 @@ def test_pairs_of_two_lengths_name_the_files_pad_key(tmp_path, capsys):
              absent=("read_at2_pair(", "pad=True"))
 
 
-def test_an_explicit_method_in_a_plan_file_names_the_solver_key(tmp_path, capsys):
-    args = _scenario(tmp_path, '[solver]\nmethod = "dp5"\n')
-    _refused(capsys, args, "[solver] method = 'dp5'", 'method = "ark5" in [solver]',
+@pytest.mark.parametrize("method", ["dp5", "tsit5"])
+def test_an_explicit_method_in_a_plan_file_names_the_solver_key(tmp_path, capsys, method):
+    args = _scenario(tmp_path, f'[solver]\nmethod = "{method}"\n')
+    _refused(capsys, args, f"[solver] method = '{method}'", 'method = "ark5" in [solver]',
              absent=("Integrator(",))
 
 

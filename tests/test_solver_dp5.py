@@ -20,23 +20,29 @@ from femoat.structure.pounding import PoundingModel
 from femoat.units import G
 
 
-def fixed_dp5(h):
+def fixed_dp5(h, method="dp5"):
     # rtol at its loosest so that the error control never shortens a step: fixed steps h
-    return Integrator(method="dp5", rtol=0.099, max_step=h)
+    return Integrator(method=method, rtol=0.099, max_step=h)
+
+
+PAIRS = ("dp5", "tsit5")
+"""The explicit 5(4) pairs on the one compiled step (Dormand-Prince, Tsitouras): the order
+tests hold for both (a wrong coefficient of either tableau drops its order to at most 1-2)."""
 
 
 def _slope(steps, errors):
     return np.polyfit(np.log(steps), np.log(errors), 1)[0]
 
 
-def test_measured_order_with_analytic_forcing():
+@pytest.mark.parametrize("method", PAIRS)
+def test_measured_order_with_analytic_forcing(method):
     # A linear 3-DOF chain (base mat + 2 floors, undamped) from an initial velocity under a
     # ground acceleration that is exactly linear in time, a_g = ȧ·t (analytic forcing: no
     # sample's kink anywhere). Modal closed form with mass-normalised modes φ_n:
     #   q̈_n + ω_n²·q_n = −L_n·ȧ·t,  L_n = φ_nᵀ·M·1
     #   q_n(t) = −L_n·ȧ·t/ω_n² + q̇₀·... : q_n = A·cos ω_n t + B·sin ω_n t − L_n·ȧ·t/ω_n²,
     #   A = q_n(0) = 0, B·ω_n = q̇_n(0) + L_n·ȧ/ω_n².
-    # Dormand-Prince keeps its fifth-order solution: the global error falls as h⁵
+    # Both pairs keep their fifth-order solution: the global error falls as h⁵
     # (slope ≥ 3.8 is the issue's bound for a method of at least fourth order).
     b = Building(isolator=Elastic(2.0), stories=(Elastic(42.799),) * 2,
                  floor_weights=(20.0, 20.0), story_damping_ratio=0.0)
@@ -50,7 +56,8 @@ def test_measured_order_with_analytic_forcing():
     for h in steps:
         t = np.arange(0.0, duration + h / 2, h)
         motion = GroundMotion(rate * t / G, h, name="ramp")
-        res = run(PoundingModel(b), motion, fixed_dp5(h), duration=duration, v0=v_init)
+        res = run(PoundingModel(b), motion, fixed_dp5(h, method), duration=duration,
+                  v0=v_init)
         assert res.meta["stats"]["rejected_error"] == 0  # really fixed steps
         L = phi.T @ m @ np.ones(3)
         qd0 = phi.T @ m @ v_init
@@ -63,7 +70,8 @@ def test_measured_order_with_analytic_forcing():
     assert errors[-1] < 1e-9
 
 
-def test_measured_order_with_a_record_when_steps_end_on_samples():
+@pytest.mark.parametrize("method", PAIRS)
+def test_measured_order_with_a_record_when_steps_end_on_samples(method):
     # The same chain, damped, under a piecewise-linear record (samples every 0.01 s), steps of
     # 1/k of a sample so that every step ends on a sample. scipy's lsim with a first-order hold
     # is exact for that input (a matrix exponential per sample), the reference.
@@ -91,7 +99,7 @@ def test_measured_order_with_a_record_when_steps_end_on_samples():
                           ag_g * G, t, interp=True)
     steps, errors = [], []
     for k in (1, 2, 4, 8):
-        res = run(PoundingModel(b), motion, fixed_dp5(dt / k), duration=t[-1])
+        res = run(PoundingModel(b), motion, fixed_dp5(dt / k, method), duration=t[-1])
         on_samples = np.isin(np.round(res.time / dt * k).astype(int) % k, [0])
         u = res.displacement[on_samples]
         assert u.shape[0] == n

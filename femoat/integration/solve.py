@@ -260,7 +260,7 @@ def _check_plan_method(name, packed):
     """Refuse an open-phase method that is first order on the plan bearings of ``packed``."""
     rated = [bearing_registry.has_rate_form(bearing_registry.kinds()[k])
              for k in np.unique(packed.bearing_kind)]
-    if name in ("dp5", "tsit5"):
+    if name in methods.EXPLICIT_PAIRS:
         raise ValueError(
             f"method = {name!r} on plan bearings: its explicit stages read a bearing's friction "
             "direction from a path guessed between stage values, which on a curved orbit is "

@@ -40,7 +40,8 @@ Relative paths are relative to the scenario file. The tables and their keys (:da
     pga); time_scale [-]: similitude factor on time; extra_time [s] of free vibration after
     the record.
 ``[solver]`` an :class:`~femoat.integration.settings.Integrator`: method ("dp5": fifth order
-    while the gaps are open, Newmark in contact; "newmark": Newmark/HHT-α throughout), rtol,
+    while the gaps are open, Newmark in contact; "tsit5": the same with Tsitouras' pair;
+    "newmark": Newmark/HHT-α throughout; "ark5": a plan run's default), rtol,
     alpha, max_step [s] (left out: the record's sample interval), min_step [s], newton_tol,
     max_newton, contact_steps, record_every, record_budget [bytes] (the recorder's memory
     ceiling: a run that would outgrow it ends with a named error).

@@ -5,6 +5,7 @@ empty file. ``[building] plan = true`` makes it a plan scenario (:data:`PLAN_KEY
 from dataclasses import dataclass
 from pathlib import Path
 
+from femoat.integration.methods import EXPLICIT_PAIRS
 from femoat.integration.settings import Integrator
 from femoat.plan.model import PlanModel
 from femoat.plan.moat import SIDES
@@ -131,7 +132,7 @@ def integrator_for(model, table):
     if isinstance(model, PlanModel):
         default = plan_method(model)
         table.setdefault("method", default)
-        if table["method"] in ("dp5", "tsit5") or (table["method"] == "ark5" and default != "ark5"):
+        if table["method"] in EXPLICIT_PAIRS or (table["method"] == "ark5" and default != "ark5"):
             raise ValueError(
                 f"[solver] method = {table['method']!r}: on this plan isolator its explicit "
                 "stages would read the friction direction from a path between stage values, "

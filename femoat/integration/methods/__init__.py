@@ -40,6 +40,10 @@ FINE_LANDING = tuple(bool(getattr(m, "FINE_LANDING", False)) for m in MODULES)
 """Per code: plan bearings' kinks and turns off a line landed to ``kinks.FINE_RESOLUTION``."""
 QUINTIC_METHODS = tuple(m.NAME for m in MODULES if m.QUINTIC_DENSE)
 """The methods whose open phase has fifth-order dense output (the acceleration crests)."""
+EXPLICIT_PAIRS = tuple(m.NAME for m in MODULES if hasattr(m, "PAIR"))
+"""The methods that are an explicit pair on dp5's step (``PAIR``): every stage, a plan
+bearing's friction state too, read from the committed state and the step's path (refused on
+plan bearings with coupled friction)."""
 N_STAGES = max(getattr(m, "N_STAGES", 0) for m in MODULES)
 """Stage rows of the work bundle's ``kv``, ``ka``, ``kz``: the most any method takes."""
 
