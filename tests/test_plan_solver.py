@@ -30,7 +30,8 @@ def ff1(seconds, factor):
 
 
 @pytest.mark.parametrize("method,isolator", [("newmark", "bearing"), ("dp5", "elastic"),
-                                             ("ark5", "bearing"), ("ark5", "tfp")])
+                                             ("tsit5", "elastic"), ("ark5", "bearing"),
+                                             ("ark5", "tfp")])
 def test_with_no_y_excitation_it_is_the_1d_run_bit_for_bit(method, isolator):
     # The plan model under (a_x, 0) is the 1D model along x (model.along("x")): nothing loads
     # y (the bearing's z stays on the x axis: its radial return is the 1D bearing's clamp),
