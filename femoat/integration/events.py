@@ -40,7 +40,7 @@ def restart(model, state, work):
     ag_now = state.ag_now
     n = u.size
     out = Outputs(work.ef, work.ed, state.c_f, state.c_d, Fn, state.b_f, state.c_ft)
-    _internal_force(u, v, model, state, work, out, False, n, u, v, 0.0, False)
+    _internal_force(u, v, model, state, work, out, False, n, u, v, 0.0)
     for i in range(n):
         w_b[i] = ground_load(r, i, ag_now) - Fn[i]
         for j in range(n):

@@ -99,7 +99,7 @@ def trial_outputs(work):
 
 
 @njit(cache=True, inline="always")
-def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau, stage_only):
+def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau):
     """F = C·v + K·u + element, bearing and contact forces at (u, v); tangents ``work.KT``,
     ``work.CT`` if asked.
 
@@ -112,10 +112,6 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
     Contacts act only while their episode is open (between a located closure and the located
     separation); a Kelvin-Voigt contact then acts at δ = 0⁺ too (its dashpot force c·δ̇ jumps on
     at closure), so that the step after a located closure starts from the right force.
-
-    ``stage_only``: an explicit step's inner stage while every gap is open, which reads F of
-    the rows before ``nd`` alone: the wall rows and the contacts (no episode open: no force) are
-    left as they are (the step's end evaluates them). The rows it writes are the same bits.
     """
     el_S, c_H, c_closed, b_S = state.el_S, state.c_H, state.c_closed, state.b_S
     el_f, el_d, c_f, c_d, F, b_f, c_ft = out
@@ -129,9 +125,8 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
         for j in range(nd):
             s += C[i, j] * v[j] + K[i, j] * u[j]
         F[i] = s
-    if not stage_only:
-        for i in range(nd, n):
-            F[i] = C[i, i] * v[i] + K[i, i] * u[i]
+    for i in range(nd, n):
+        F[i] = C[i, i] * v[i] + K[i, i] * u[i]
     if want_tangent:
         for i in range(nd):
             for j in range(nd):
@@ -164,8 +159,6 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
                 CT[j, j] += cf
                 CT[i, j] -= cf
                 CT[j, i] -= cf
-    if stage_only:
-        return
     for c in range(c_code.size):
         b = c_B[c]
         d = -c_gap[c]
@@ -268,4 +261,4 @@ def internal_force(model, state, work):
     and contact forces into ``state``, F = C·v + K·u + ... into ``state.F``."""
     out = Outputs(state.el_f, state.el_d, state.c_f, state.c_d, state.F, state.b_f, state.c_ft)
     _internal_force(state.u, state.v, model, state, work, out, False, state.u.size, state.u,
-                    state.v, 0.0, False)
+                    state.v, 0.0)

@@ -387,7 +387,7 @@ def coupled_step(hh, ag1, model, state, settings, work):
             return np.inf
         c = 1.0 if last else ARK_C[s]
         _internal_force(work.u, work.v, model, state, work, trial_outputs(work), last, nb, u0,
-                        v0, c * hh, not last)
+                        v0, c * hh)
         for k in range(ag.size):
             ag[k] = ag1[k] if last else ag0[k] + c * (ag1[k] - ag0[k])
         dp5.stage_load(r, ag, nb, work)

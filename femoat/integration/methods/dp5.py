@@ -218,10 +218,7 @@ def _stages(A, C, hh, ag0, ag1, nb, model, state, work):
     """The seven stages of the pair with coefficients ``A`` (its last row the fifth-order
     weights) and stage times ``C`` (``work.kv``, ``work.ka``); after it ``work.u``, ``work.v``
     (i < nb) hold the fifth-order solution, ``work.ef``/``ed``, ``F`` and the tangents ``KT``,
-    ``CT`` its forces. False when a stage is not finite. The stages before the last evaluate
-    the building's rows only (:func:`~femoat.integration.forces._internal_force`'s
-    ``stage_only``: the walls are advanced exactly and every gap is open); the last one, the
-    step's end, evaluates everything."""
+    ``CT`` its forces. False when a stage is not finite."""
     Minv, r = model.Minv, model.r
     kv, ka = work.kv, work.ka
     u0, v0 = state.u, state.v
@@ -242,9 +239,8 @@ def _stages(A, C, hh, ag0, ag1, nb, model, state, work):
                 sv += aij * ka[j, i]
             work.u[i] = u0[i] + hh * su
             work.v[i] = v0[i] + hh * sv
-        last = s == N_STAGES - 1
         _internal_force(work.u, work.v, model, state, work, trial_outputs(work),
-                        last, nb, u0, v0, C[s] * hh, not last)
+                        s == N_STAGES - 1, nb, u0, v0, C[s] * hh)
         ag = work.ag_stage
         for k in range(ag.size):
             ag[k] = ag0[k] + C[s] * (ag1[k] - ag0[k])

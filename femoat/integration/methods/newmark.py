@@ -249,7 +249,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         amax = _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         nd = _dense_size(n_coupled, any_closed, model, work)
         _internal_force(work.u, work.v, model, state, work, trial_outputs(work), True, nd,
-                        state.u, state.v, hh, False)
+                        state.u, state.v, hh)
         _residual(bh2, gh, alpha, ag0, ag1, nd, model, state, work)
         if it > 1 and _residual_is_small(bh2, ntol, amax, scale, work):
             converged = True
@@ -268,7 +268,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
         # final kinematics and forces at the converged acceleration
         _trial_kinematics(hh, bh2, gh, beta, gamma, state, work)
         _internal_force(work.u, work.v, model, state, work, trial_outputs(work), False, nd,
-                        state.u, state.v, hh, False)
+                        state.u, state.v, hh)
     return converged
 
 
