@@ -16,7 +16,10 @@ Newmark). The worst peak errors are against the plan run converged (Newmark, rto
 pendulum instead (both on ark5, their rate forms); the last two columns then give the single
 friction pendulum's plan run of the same pair (the default) and the ratio of the two CPUs (issue
 28's target for the triple pendulum: at most 2). ``--reference ark5``: the converged run is ark5
-at rtol 1e-9 instead of Newmark at 1e-8.
+at rtol 1e-9 instead of Newmark at 1e-8. ``--loop own``: compile the loop for the single
+pendulum alone when the building stands on it (what ``femoat run`` and the studies compile for
+such a model, ``femoat.startup.bearing_kinds``); the default ``all`` is the loop of every bearing
+kind, what a Python session gets.
 """
 
 import argparse
@@ -89,7 +92,14 @@ def main(argv=None):
                          "form: ark5)")
     ap.add_argument("--reference", choices=("newmark", "ark5"), default="newmark",
                     help="the converged run: Newmark at rtol 1e-8 (default) or ark5 at rtol 1e-9")
+    ap.add_argument("--loop", choices=("all", "own"), default="all",
+                    help="the compiled loop: every bearing kind's (a Python session's, default) "
+                         "or the pendulum's alone for --isolator fp (what femoat run compiles)")
     args = ap.parse_args(argv)
+    if args.loop == "own" and args.isolator == "fp":
+        from femoat.bearings import registry
+
+        registry.select(["fp"])
     building = PlanBuilding()
     if args.isolator == "lrb":
         from femoat.bearings.lead_rubber import LeadRubberBearing
