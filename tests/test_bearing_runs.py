@@ -180,6 +180,25 @@ def test_a_1d_run_matches_its_opensees_twin(key):
 
 @pytest.mark.opensees
 @pytest.mark.parametrize("key", sorted(BEARINGS))
+def test_the_3d_twin_reports_a_sliders_normal_force(key):
+    # The triple pendulum is a slider: its twin takes N = W from a static gravity step (the
+    # vertical material linear, so one load step is exact) and reports it, as the single
+    # pendulum's does (test_opensees_plan); the lead-rubber bearing carries no normal force
+    # in its twin (None).
+    from femoat.opensees.plan import opensees_plan_run
+
+    opensees_or_skip()
+    pair, model = _plan_case(key)
+    short = RecordPair(_first(pair.x, 0.05), _first(pair.y, 0.05), angle=30.0)
+    normal = opensees_plan_run(model, short, 2e-4, tol=1e-8)["bearing_normal_force"]
+    if key == "tfp":
+        assert normal == pytest.approx(model.building.isolator.W, rel=1e-9)
+    else:
+        assert normal is None
+
+
+@pytest.mark.opensees
+@pytest.mark.parametrize("key", sorted(BEARINGS))
 def test_a_plan_run_matches_its_opensees_twin(key):
     # The paper building in plan on the bearing in the square concrete moat (law H), the
     # Erzincan record along x and its reversed copy at 0.6 along y, turned by 30°, first 8 s:

@@ -51,6 +51,7 @@ import math
 
 import numpy as np
 
+from femoat.bearings import registry as bearing_registry
 from femoat.ground_motions.pair import RecordPair
 from femoat.opensees.tags import BASE, BEARING_ELE, CONTACT_ELE
 from femoat.opensees.transient import (
@@ -120,7 +121,8 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
         [in] (the impact points, away from the building), ``contact_force`` [kip]
         (compression positive) and ``indentation`` [in], each (steps + 1, walls); ``walls``
         (the sides, in that column order);
-        ``bearing_normal_force`` [kip] (N after the gravity step; None without a slider);
+        ``bearing_normal_force`` [kip] (N after the gravity step of a slider, the single or
+        the triple friction pendulum; None on a bearing without one);
         ``peaks``: ``plan_base_displacement`` (largest |u| of the base mat) [in],
         ``base_displacement`` (x, y) [in], ``drift`` (floors, 2) [in],
         ``floor_acceleration`` (floors, 2) [g], and per wall ``impact_force`` [kip] (largest
@@ -145,7 +147,7 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
     normal = []
 
     def initial(ops):
-        if isinstance(model.building.isolator, BidirectionalFrictionPendulum):  # N = W
+        if _slider(model):  # N = W (the basic axial force, compression negative)
             normal.append(-ops.eleResponse(BEARING_ELE, "basicForce")[0])
         rows, T = twin_rows(model)
         set_initial_state(ops, rows, T @ v, T @ a)
@@ -154,6 +156,14 @@ def opensees_plan_run(model, pair, dt, duration=None, v0=None, tol=1e-10, max_it
                     max_iter)
     normal = normal[0] if normal else None
     return _summarise(hist, model, pair, dt, normal, cmds)
+
+
+def _slider(model):
+    """Whether the model's isolator is a slider whose twin carries the normal force N = W from
+    a gravity step (its bearing kind's ``OPENSEES_AXIAL_LOAD``)."""
+    kind = bearing_registry.kind_of(model.building.isolator)
+    return kind is not None and bool(getattr(bearing_registry.module(kind),
+                                             "OPENSEES_AXIAL_LOAD", False))
 
 
 def _step_loop(ops, model, n_steps, dt):
