@@ -169,8 +169,9 @@ def _slider(model):
 def _step_loop(ops, model, n_steps, dt):
     """``analyze(n_steps, dt)`` with binary recorders (:func:`recorded_analysis`, as the 1D
     twin): displacements of every node in x and y, accelerations of the building's nodes,
-    contact forces, the base mat's velocity and, under a slider, its friction force (the basic
-    shear forces)."""
+    contact forces, the base mat's velocity and, under the single pendulum, its friction force
+    (the basic shear forces of its flat slider, the W/R springs apart; the triple pendulum's
+    element gives the whole bearing force there, not its friction)."""
     nf = len(model.building.floor_weights) + 1
     nw = len(model.walls)
     slider = isinstance(model.building.isolator, BidirectionalFrictionPendulum)
