@@ -92,6 +92,55 @@ def test_paper_run_matches_femoat():
 
 @pytest.mark.opensees
 @needs_opensees
+def test_p_delta_run_matches_femoat():
+    from femoat.opensees import opensees_run
+
+    # The run above with P-Delta: femoat adds the linear geometric stiffness −P_k/h_k to each
+    # story (P_k the weight of floor k and above: 23, 15, 7 kip; h = 39 in), the twin an
+    # Elastic(−P_k/h_k) beside each story's material. The same step and contact arguments as
+    # above: impact peaks within 2e-3, the base displacement within 1e-4; the drifts and floor
+    # accelerations follow the stories' modes, resolved at 2e-4 s (measured ≤ 1.6e-5): 1e-4.
+    # Without P-Delta the twin's drifts are 3-13 % off femoat's P-Delta run, so the
+    # comparison sees the geometric stiffness.
+    model = paper_model("steel", "J", building=Building(p_delta=True))
+    gm = _first_seconds(paper_motion(), 4.0)
+    p = opensees_run(model, gm, 2e-4, duration=5.0)["peaks"]
+    q = run(model, gm, Integrator(rtol=1e-8), duration=5.0).peaks
+    assert (p["impacts_pos"], p["impacts_neg"]) == (q["impacts_pos"], q["impacts_neg"]) == (1, 2)
+    assert p["peak_impact_force"] == pytest.approx(q["peak_impact_force"], rel=2e-3)
+    assert p["peak_base_displacement"] == pytest.approx(q["peak_base_displacement"], rel=1e-4)
+    for key in ("peak_drift", "peak_floor_acceleration"):
+        np.testing.assert_allclose(p[key], q[key], rtol=1e-4, err_msg=key)
+    plain = opensees_run(paper_model("steel", "J"), gm, 2e-4, duration=5.0)["peaks"]
+    off = np.abs(np.asarray(plain["peak_drift"]) / np.asarray(q["peak_drift"]) - 1.0)
+    assert off.min() > 0.02, off
+
+
+@pytest.mark.opensees
+@needs_opensees
+def test_p_delta_on_one_axis_is_a_negative_story_spring():
+    from femoat.opensees import opensees_run
+
+    # OpenSees alone, exact: the 1D twin of an elastic building with P-Delta is the twin of the
+    # same building without it whose stories are softened to k − P_k/h_k (P_k = 23, 15, 7 kip,
+    # h = 39 in), undamped on both sides; equal to round-off. Stories of 2 kip/in make the
+    # geometric terms O(1) (up to 0.59 kip/in), so a wrong sign shows.
+    gm = _first_seconds(paper_motion(), 3.0)
+
+    def floors(stories, p_delta):
+        b = Building(stories=stories, p_delta=p_delta, isolator=Elastic(2.0),
+                     story_damping_ratio=0.0)
+        return opensees_run(PoundingModel(b), gm, 1e-3, duration=3.0)["floor_displacement"]
+
+    theirs = floors(tuple(Elastic(2.0 - p / 39.0) for p in (23.0, 15.0, 7.0)), False)
+    ours = floors((Elastic(2.0),) * 3, True)
+    scale = np.abs(theirs).max()
+    assert np.abs(ours - theirs).max() <= 1e-9 * scale
+    assert np.abs(floors((Elastic(2.0),) * 3, False) - theirs).max() > 0.05 * scale
+
+
+@pytest.mark.opensees
+@needs_opensees
 def test_cli_prints_both_summaries(tmp_path, capsys):
     from femoat.commands import opensees as cmd
 

@@ -147,9 +147,5 @@ def test_scenario_keys_and_bad_values():
         Building(isolator_capacity=-1.0)
 
 
-def test_opensees_twin_refuses_p_delta():
-    # the twin has no geometric stiffness: a P-Delta model must not be cross-checked silently
-    from femoat.opensees.building import _check_model
-
-    with pytest.raises(ValueError, match="p_delta"):
-        _check_model(paper_model("concrete", "H", building=Building(p_delta=True)))
+# (The OpenSees twins carry P-Delta on one axis and in plan: tests/test_opensees_building.py,
+# tests/test_opensees_plan.py.)

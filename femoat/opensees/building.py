@@ -8,9 +8,10 @@ script.
 
 The model is the one twin builder's on one axis (:mod:`femoat.opensees.twin`, where the OpenSees
 model is written once: ``-ndm 1 -ndf 1``, one ``UniformExcitation``, the isolator kind's uniaxial
-twin; the walls' chains: :mod:`femoat.opensees.wall_chain`). Refused with a sentence: P-Delta
-(no geometric stiffness on one axis; the 3D twin has it), a bearing kind without a uniaxial twin
-or a velocity-dependent friction pendulum (check those in plan: :mod:`femoat.opensees.plan`).
+twin; the walls' chains: :mod:`femoat.opensees.wall_chain`; with P-Delta each story's
+``Elastic −P/h`` beside its material, femoat's linear geometric stiffness, as in the 3D twin).
+Refused with a sentence: a bearing kind without a uniaxial twin or a velocity-dependent friction
+pendulum (check those in plan: :mod:`femoat.opensees.plan`).
 
 The run records every node's displacement (mapped back to femoat's DOFs: a wall's chain to its
 modal coordinates), the base and floor accelerations and the contact stresses (``cpu_seconds``
@@ -51,9 +52,6 @@ from femoat.units import G
 def _check_model(model):
     if not isinstance(model, PoundingModel):
         raise ValueError("model must be a PoundingModel (femoat.structure.pounding).")
-    if model.building.p_delta:
-        raise ValueError("building: the OpenSees twin has no P-Delta (p_delta=True); build the "
-                         "Building with p_delta=False to cross-check it.")
     for w in model.walls:
         if not isinstance(w.law, ContactLaw):
             raise ValueError("walls: each wall needs a ContactLaw.")
@@ -64,7 +62,8 @@ def opensees_commands(model, motion):
     ``(function name, *args)`` tuples, ending with the excitation (no analysis set-up, no
     ``analyze``): the one builder :func:`~femoat.opensees.twin.twin_commands` on one axis.
 
-    Raises ValueError for what has no OpenSees twin (velocity-dependent friction, P-Delta).
+    Raises ValueError for what has no OpenSees twin (velocity-dependent friction, a bearing
+    kind without a uniaxial twin).
     """
     _check_model(model)
     return twin_commands(model, motion)
