@@ -85,3 +85,15 @@ def test_a_wall_variation_of_the_other_kind_of_suite_names_the_key_to_vary(tmp_p
                                  records=records, key=key), encoding="utf-8")
     _refused(capsys, ["suite", str(path), "--check"], f"[variations] '{key}'", fix,
              absent=("rename the table",))
+
+
+@pytest.mark.parametrize("method", ["dp5", "tsit5", "newmark"])
+def test_a_1d_file_takes_any_open_phase_method(method):
+    # a 1D model has no plan bearing: both explicit pairs run on it, as Newmark does; the rtol
+    # left out is the method's default
+    from femoat.integration.settings import DEFAULT_RTOL
+    from femoat.paper import paper_model
+    from femoat.scenario.document import integrator_for
+
+    integ = integrator_for(paper_model("concrete", "H"), {"method": method})
+    assert (integ.method, integ.rtol) == (method, DEFAULT_RTOL[method])
