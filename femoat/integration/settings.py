@@ -36,9 +36,8 @@ class Integrator:
         (:mod:`femoat.integration.methods.ark5`; the default of a plan run on a friction
         pendulum, :func:`femoat.run.plan_method`; "dp5" is refused on plan bearings).
         "tsit5": "dp5" with the Tsitouras 5(4) pair instead of Dormand-Prince's, on the same
-        step (:mod:`femoat.integration.methods.tsit5`; 2 % fewer steps on the far-field
-        records, none on the paper runs, every peak as accurate: not the default, for the
-        reasons in ``benchmarks/README.md``; refused on plan bearings as "dp5"). All
+        step (:mod:`femoat.integration.methods.tsit5`; why it is not the default:
+        ``benchmarks/README.md``; refused on plan bearings as "dp5"). All
         locate contact events and land on element kinks the same way; "dp5" and "ark5" also
         land on the turning points of yielding elements (every stage of their step is
         evaluated from the committed state).
