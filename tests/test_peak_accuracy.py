@@ -95,7 +95,9 @@ def test_tsit5_at_its_default_rtol_gives_every_peak_within_1e_3(case):
     # with three impacts.
     model, motion = case_inputs(case)
     res = run(model, motion, Integrator(method="tsit5"))
-    assert res.meta["stats"]["steps"] > 0
+    # the loop really ran Tsitouras' tableau: its steps are not dp5's (measured on these three:
+    # 3,811 against 4,201, 12,608 against 13,919, 7,440 against 7,505)
+    assert res.meta["stats"]["steps"] != run(model, motion).meta["stats"]["steps"]
     errors = relative_errors(peaks(res), converged(case))
     assert max(errors.values()) < 1e-3, errors
 

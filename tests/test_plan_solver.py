@@ -196,7 +196,7 @@ def test_wall_friction_stops_a_base_mat_sliding_along_the_wall():
 
 
 @pytest.mark.parametrize("method", ["dp5", "tsit5"])
-def test_dp5_is_refused_on_a_plan_friction_pendulum(pair_and_model, method):
+def test_the_explicit_pairs_are_refused_on_a_plan_friction_pendulum(pair_and_model, method):
     # both explicit pairs read the friction direction from a path between stage values
     pair, model = pair_and_model
     with pytest.raises(ValueError, match=f"method = '{method}' on plan bearings.*'newmark'"):

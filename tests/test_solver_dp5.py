@@ -34,6 +34,77 @@ def _slope(steps, errors):
     return np.polyfit(np.log(steps), np.log(errors), 1)[0]
 
 
+def _rooted_trees(order):
+    """Every rooted tree with ``order`` nodes, as a sorted tuple of its subtrees."""
+    if order == 1:
+        return [()]
+    found = set()
+
+    def children(left, smallest):
+        # multisets of subtrees whose node counts sum to ``left``, in non-decreasing order
+        if left == 0:
+            yield ()
+            return
+        for n in range(smallest[0], left + 1):
+            for t in _rooted_trees(n):
+                if (n, t) < smallest:
+                    continue
+                for rest in children(left - n, (n, t)):
+                    yield (t,) + rest
+
+    for kids in children(order - 1, (1, ())):
+        found.add(tuple(sorted(kids)))
+    return sorted(found)
+
+
+def _size(t):
+    return 1 + sum(_size(u) for u in t)
+
+
+def _density(t):
+    """γ(t): the tree's order times its subtrees' densities."""
+    return _size(t) * math.prod(_density(u) for u in t)
+
+
+def _stage_weights(A, t):
+    """Φ_i(t) of every stage i: the product over the subtrees u of Σ_j a_ij·Φ_j(u)."""
+    out = np.ones(A.shape[0])
+    for u in t:
+        out = out * (A @ _stage_weights(A, u))
+    return out
+
+
+@pytest.mark.parametrize("method", PAIRS)
+def test_the_pairs_tableau_meets_the_order_conditions(method):
+    # Butcher's order conditions Σ_i b_i·Φ_i(t) = 1/γ(t) over every rooted tree t: all 17 trees
+    # of up to five nodes for the fifth-order weights b (the last row of A), all 8 of up to
+    # four for the embedded weights b̂ = b − E over the seven stages (the last one the step's
+    # end), and b̂ misses order five (an embedded pair that met it would estimate nothing).
+    # Also c_s = Σ_j a_sj, and E sums to zero (both solutions are consistent). In double
+    # precision: Tsitouras' coefficients reach 13 in size, so the sums round to ~1e-14; a wrong
+    # digit anywhere shows far above 1e-13.
+    from femoat.integration import methods
+
+    A6, C, B, E = methods.module(method).PAIR
+    A = np.zeros((7, 7))
+    A[:, :6] = A6  # a_sj, j < s; the seventh stage's row is b (first same as last)
+    b = A[6].copy()
+    b_hat = b - E
+    np.testing.assert_allclose(A.sum(axis=1), C, atol=1e-13)
+    np.testing.assert_allclose(B, b[:6], atol=0)
+    assert abs(E.sum()) < 1e-13
+    trees = {n: _rooted_trees(n) for n in range(1, 6)}
+    assert [len(trees[n]) for n in trees] == [1, 1, 2, 4, 9]
+    for n, ts in trees.items():
+        for t in ts:
+            phi = _stage_weights(A, t)
+            assert b @ phi == pytest.approx(1.0 / _density(t), abs=1e-13), (n, t)
+            if n <= 4:
+                assert b_hat @ phi == pytest.approx(1.0 / _density(t), abs=1e-13), (n, t)
+    misses = [abs(b_hat @ _stage_weights(A, t) - 1.0 / _density(t)) for t in trees[5]]
+    assert max(misses) > 1e-4
+
+
 @pytest.mark.parametrize("method", PAIRS)
 def test_measured_order_with_analytic_forcing(method):
     # A linear 3-DOF chain (base mat + 2 floors, undamped) from an initial velocity under a

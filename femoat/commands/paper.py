@@ -23,8 +23,9 @@ def add_parser(sub):
                    help="calibrate each damped law to reach e = 0.70 exactly at 10 in/s")
     p.add_argument("--method", default=Integrator().method, choices=METHODS,
                    help="integration method of the open phase: 'dp5' (fifth order, the "
-                   "default), 'tsit5' (the same step with Tsitouras' pair) or 'newmark' "
-                   "(Newmark throughout); contact is always Newmark")
+                   "default), 'tsit5' (the same step with Tsitouras' pair), 'ark5' (dp5 on "
+                   "these 1D models) or 'newmark' (Newmark throughout); contact is always "
+                   "Newmark")
     p.add_argument("--rtol", type=float, default=None,
                    help="solver accuracy (local error / DOF scale; default: the method's, "
                    + ", ".join(f"{m} {r:g}" for m, r in DEFAULT_RTOL.items()) + ")")

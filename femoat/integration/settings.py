@@ -38,8 +38,8 @@ class Integrator:
         "tsit5": "dp5" with the Tsitouras 5(4) pair instead of Dormand-Prince's, on the same
         step (:mod:`femoat.integration.methods.tsit5`; why it is not the default:
         ``benchmarks/README.md``; refused on plan bearings as "dp5"). All
-        locate contact events and land on element kinks the same way; "dp5" and "ark5" also
-        land on the turning points of yielding elements (every stage of their step is
+        locate contact events and land on element kinks the same way; "dp5", "tsit5" and
+        "ark5" also land on the turning points of yielding elements (every stage of their step is
         evaluated from the committed state).
     alpha : float
         HHT-α parameter in [−1/3, 0]; 0 is Newmark's average acceleration (no numerical
@@ -50,7 +50,7 @@ class Integrator:
         solution's for "dp5") is kept below
         rtol × the DOF's scale: a story's drift against its yield drift, the base mat and the
         walls against the gap while all gaps are open and against δ_me while a contact is
-        closed [in] ("dp5", "ark5": against half the largest indentation of the smallest
+        closed [in] ("dp5", "tsit5", "ark5": against half the largest indentation of the smallest
         episode under way, between 0.1·δ_me and δ_me, so that a small impact's peak force is
         held as a large one's), and the building's accelerations against 0.15 × the record's peak ground
         acceleration (at least 0.1 g) [in/s²] while all gaps are open

@@ -287,7 +287,7 @@ DP_B = DP_A[N_STAGES - 1, :N_STAGES - 1].copy()
 """The fifth-order weights of the stages before the last (whose weight is zero)."""
 PAIR = (DP_A, DP_C, DP_B, DP_E)
 """The pair as :func:`explicit_step` reads it: (a_sj with the weights as the last row, c_s,
-the weights b of the stages before the last, b − b̂). Another seven-stage FSAL pair of order
+the weights b of the stages before the last, b − b̂ over every stage). Another seven-stage FSAL pair of order
 5(4) is another such tuple on the same compiled step (:mod:`~femoat.integration.methods.tsit5`)."""
 
 

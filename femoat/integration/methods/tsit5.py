@@ -64,15 +64,15 @@ for _s, _row in enumerate(_ROWS):
     for _j, _x in enumerate(_row):
         TS_A[_s, _j] = _num(_x)
 """Stage coefficients a_sj (row s, j < s); the last row is the fifth-order weights b."""
-TS_E = np.array([_num(x) for x in (
+TS_E = -np.array([_num(x) for x in (
     "-0.0017800110522257714433785506075395347759446788043336595576374507998",
     "-0.00081643445965674690322363606335468624018625375901590476109406046708",
     "0.0078808780102619960103147276725263042386287337771031286032581296050",
     "-0.14471100717326290753716514797263511672092271234316767761951423390",
     "0.58235716545255522501993761065204217942607812395673877976730454388",
     "-0.45808210592918694666163651883255429744280472797883981794746844347")] + [1.0 / 66.0])
-"""The error estimate's weights (the embedded solution minus the fifth-order one; the sign does
-not matter, the error is a magnitude)."""
+"""b − b̂: the fifth- minus the embedded fourth-order weights, as dp5's ``DP_E`` (the paper
+tabulates the embedded minus the fifth-order ones: negated here)."""
 TS_B = TS_A[6, :6].copy()
 """The fifth-order weights of the stages before the last (whose weight is zero)."""
 N_STAGES = 7
@@ -91,7 +91,6 @@ ERROR_EXPONENT = dp5.ERROR_EXPONENT
 SAFETY = dp5.SAFETY
 SHRINK_MIN = dp5.SHRINK_MIN
 GROW_MAX = dp5.GROW_MAX
-
 
 
 @njit(cache=True, inline="always")
