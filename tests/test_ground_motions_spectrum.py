@@ -85,3 +85,21 @@ def test_shapes_and_validation():
         response_spectrum(gm, 1.0, damping=-0.05)
     with pytest.raises(TypeError, match="GroundMotion"):
         response_spectrum(gm.accel_g, 1.0)
+
+
+def test_one_period_on_floats_is_the_vectorised_recurrence_to_the_bit(monkeypatch):
+    # A few periods run the Nigam-Jennings recurrence on Python floats, more run it vectorised
+    # over periods: the same IEEE operations in the same order, so the same bits (a suite's
+    # scale factors, and with them its stored runs, depend on them).
+    from femoat.ground_motions import fema_p695_record
+    from femoat.ground_motions import spectrum
+
+    periods = [0.2, 1.0, 3.5]
+    for record, component in ((1, "a"), (12, "b")):
+        gm = fema_p695_record("farfield", record, component)
+        floats = [spectrum.response_spectrum(gm, t).psa for t in periods]
+        monkeypatch.setattr(spectrum, "SCALAR_PERIODS", 0)
+        vectorised = [spectrum.response_spectrum(gm, t).psa for t in periods]
+        monkeypatch.setattr(spectrum, "SCALAR_PERIODS", 4)
+        assert floats == vectorised
+        assert spectrum.response_spectrum(gm, periods).psa.tolist() == [float(x) for x in floats]
