@@ -296,3 +296,31 @@ def test_bad_workers_are_refused_by_name(tmp_path, capsys):
     assert main(["study", "bidirectional", "--quick", "--workers", "0", "--out", str(out)]) == 2
     assert "--workers 0" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_on_dask_the_suites_share_one_local_cluster(study, tmp_path, monkeypatch):
+    # Not serial: both suites of the study run on one local cluster (started once, its worker
+    # loading the compiled loop once), and every run is the serial run's: the same table, to
+    # the printed digits and in every stored number.
+    from femoat.suite import execute
+
+    started = []
+    real = execute.local_cluster
+
+    @contextlib.contextmanager
+    def counted(workers=None):
+        with real(workers) as address:
+            started.append(address)
+            yield address
+
+    monkeypatch.setattr(execute, "local_cluster", counted)
+    out = tmp_path / "bidirectional"
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(io.StringIO()):
+        code = main(["study", "bidirectional", "--quick", "--workers", "1", "--out", str(out)])
+    assert code == 0
+    assert len(started) == 1
+    serial_out, serial_printed = study
+    assert printed.getvalue() == serial_printed.replace(str(serial_out), str(out))
+    pd.testing.assert_frame_equal(pd.read_csv(out / "table.csv"),
+                                  pd.read_csv(serial_out / "table.csv"))

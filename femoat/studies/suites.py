@@ -1,6 +1,7 @@
 """Running a study's suites: each definition into its own folder (resumable), its run table read
 back, and the study's table written beside them."""
 
+import contextlib
 import sys
 from pathlib import Path
 
@@ -10,6 +11,7 @@ def run_suites(name, definitions, out, workers=None, serial=False, overwrite=Fal
     """Run (or resume) each suite of ``definitions`` ({key: parsed-TOML dict}) into
     ``out/<key>``; return {key: its run table} (:func:`femoat.suite.load_table`)."""
     from femoat.suite import load_table, run_suite, suite_from_dict
+    from femoat.suite.execute import local_cluster
 
     from femoat.startup.bearing_kinds import select_for
     from femoat.suite.runs import models
@@ -17,14 +19,17 @@ def run_suites(name, definitions, out, workers=None, serial=False, overwrite=Fal
     stream = stream or sys.stderr
     out = Path(out)
     suites = {key: suite_from_dict(d) for key, d in definitions.items()}
-    # one loop for every suite of the study (their bearing kinds together)
+    # one loop for every suite of the study (their bearing kinds together), and one local
+    # cluster: its workers start and load that loop once for all the suites
     select_for([m for suite in suites.values() for m in models(suite)])
     tables = {}
-    for key, suite in suites.items():
-        stream.write(f"femoat study {name}: the {key.upper()} suite\n")
-        run_suite(suite, out / key, workers=workers, serial=serial, overwrite=overwrite,
-                  stream=stream)
-        tables[key] = load_table(out / key)
+    with contextlib.ExitStack() as stack:
+        scheduler = None if serial else stack.enter_context(local_cluster(workers))
+        for key, suite in suites.items():
+            stream.write(f"femoat study {name}: the {key.upper()} suite\n")
+            run_suite(suite, out / key, scheduler=scheduler, serial=serial, overwrite=overwrite,
+                      stream=stream)
+            tables[key] = load_table(out / key)
     return tables
 
 

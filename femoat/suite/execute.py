@@ -227,29 +227,46 @@ def _sigint_ignored():
         signal.signal(signal.SIGINT, old)
 
 
-def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file, bearings):
+@contextlib.contextmanager
+def local_cluster(workers=None):
+    """A local Dask cluster of ``workers`` single-threaded worker processes (default: one per
+    core), started once for one suite or several in a row (a study's suites share it, and so
+    its start and its workers' loaded kernels): yields the scheduler's address for
+    :func:`run_suite`'s ``scheduler``; closed on exit."""
     import logging
+    import os
 
-    from dask.distributed import Client, LocalCluster, as_completed
+    import dask
+    from dask.distributed import Client, LocalCluster
 
-    cluster = None
+    n = workers or os.cpu_count() or 1
+    # (workers' own log lines at shutdown, e.g. a heartbeat to a scheduler already gone, are
+    # noise: a failing run reaches us through its future)
+    with dask.config.set(LOCAL_WORKER_CONFIG), _sigint_ignored():
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.CRITICAL)
+    try:
+        with Client(cluster) as client:
+            client.register_plugin(_ignore_sigint_plugin())  # and a worker restarted later
+        yield cluster.scheduler_address
+    finally:
+        cluster.close()
+
+
+def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler_file, bearings):
+    with contextlib.ExitStack() as stack:
+        if not (scheduler or scheduler_file):
+            scheduler = stack.enter_context(local_cluster(workers))
+        _on_client(suite, out, tasks, progress, summary, scheduler, scheduler_file, bearings)
+
+
+def _on_client(suite, out, tasks, progress, summary, scheduler, scheduler_file, bearings):
+    from dask.distributed import Client, as_completed
+
     if scheduler:
         client = Client(scheduler)
-    elif scheduler_file:
-        client = Client(scheduler_file=str(scheduler_file))
     else:
-        import os
-
-        import dask
-
-        n = workers or os.cpu_count() or 1
-        # (workers' own log lines at shutdown, e.g. a heartbeat to a scheduler already gone,
-        # are noise: a failing run reaches us through its future)
-        with dask.config.set(LOCAL_WORKER_CONFIG), _sigint_ignored():
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.CRITICAL)
-        client = Client(cluster)
-        client.register_plugin(_ignore_sigint_plugin())  # and a worker restarted later
+        client = Client(scheduler_file=str(scheduler_file))
     futures = {}
     try:
         # per worker: the kernels loaded (from the cache the client just wrote) and how many
@@ -289,5 +306,3 @@ def _on_dask(suite, out, tasks, progress, summary, workers, scheduler, scheduler
         for f in futures:
             f.cancel()
         client.close()
-        if cluster is not None:
-            cluster.close()
