@@ -134,14 +134,16 @@ follows each step's path: first order in an explicit step's stages, so the impli
 
 def plan_method(model):
     """The default method of a plan run of ``model`` (a :class:`~femoat.plan.PlanModel`):
-    :data:`PLAN_METHOD` if its isolator kind declares a rate form, else
-    :data:`PLAN_METHOD_PATH`."""
+    :data:`PLAN_METHOD` if its isolator kind declares a rate form that covers it (not a
+    triple pendulum's velocity-dependent friction), else :data:`PLAN_METHOD_PATH`."""
     from femoat.bearings import registry
 
-    kind = registry.kind_of(model.building.isolator)
+    iso = model.building.isolator
+    kind = registry.kind_of(iso)
     if kind is None:  # no plan bearing (an elastic isolator): ark5 is dp5 there
         return PLAN_METHOD
-    return PLAN_METHOD if registry.has_rate_form(registry.kinds()[kind]) else PLAN_METHOD_PATH
+    covered = registry.rate_form_covers(registry.kinds()[kind], iso.params())
+    return PLAN_METHOD if covered else PLAN_METHOD_PATH
 
 
 def _limits(model, packed, collapse):

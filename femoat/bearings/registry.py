@@ -181,6 +181,17 @@ def has_rate_form(name):
     return hasattr(importlib.import_module(name), RATE_KERNELS["bearing_plan_rate"][0])
 
 
+def rate_form_covers(name, params):
+    """Whether the kind module ``name``'s rate form covers a bearing of ``params`` (its
+    optional ``rate_form_covers(params)``; a kind without one covers every bearing it declares
+    the rate form for). False for a kind without a rate form."""
+    mod = importlib.import_module(name)
+    if not has_rate_form(name):
+        return False
+    covers = getattr(mod, "rate_form_covers", None)
+    return True if covers is None else bool(covers(params))
+
+
 def generate(names=None, compiled=None):
     """The dispatcher's source for the kinds ``names`` (default: the registered ones), with a
     branch for the kinds whose indices ``compiled`` lists (default: every one). A kind left

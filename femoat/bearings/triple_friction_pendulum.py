@@ -170,21 +170,32 @@ them: not part of the state's value).
 
 Recoverable energy: Σ_i (W/L̄_i)·|d_i|²/2 + μ_i·W·u_y,i·|z_i|²/2 + k_0·(|d_i| − g_i)₊²/2.
 
-Velocity-dependent friction (not modelled). Unlike the single pendulum, whose μ(v) reads the
-bearing's own velocity, each surface's μ_i would read its own sliding rate ḋ_i, which the series
-does not give as a function of the bearing's state and velocity: with the sliders massless and
-two elements sliding, the common force gives W·d_1/L̄_1 + μ_1(|ḋ_1|)·W = W·d_2/L̄_2 + μ_2(|ḋ_2|)·W
-with ḋ_1 + ḋ_2 = v, an implicit equation for the split (unique where each μ_i grows with speed,
-as Constantinou's μ_fast − (μ_fast − μ_slow)·e^(−a|v|) does), so the internal displacements
-become stiff states of their own (relaxation rate ~(1/L̄_1 + 1/L̄_2)/(μ_1′ + μ_2′), unbounded as
-μ′ → 0 at speed, where it tends to this module's rate-independent split). The split by the
-rate-independent compliances, ḋ_i = C_i·Ḟ, drops μ_i′·d(|ḋ_i|)/dt, which is not small (L̄_i·μ_i′
-times the slider's acceleration: tens of in/s on a record). OpenSees' element evaluates each
-friction model at its element's backward-Euler rate (d_i − d_i,n)/Δt from the previous Newton
-iteration, i.e. solves the implicit split at first order in Δt. A faithful femoat form needs the
-slips in the rate form's state (their stiff relaxation in the coupled step's implicit part) and
-a step duration in the one-axis kernels' contract (today (u, v) only), so it is left for its
-own change; a velocity-dependent single pendulum (``femoat.bearings.friction_pendulum``) has it.
+Velocity-dependent friction (``mu1_fast``, ``mu2_fast``, ``mu3_fast``, ``a``). Each surface's
+friction follows Constantinou's law at its own sliding speed, μ_i(v) = μ_fast,i −
+(μ_fast,i − μ_i)·e^(−a·v) (μ_i then the value at rest), the surface's speed being fact_i times
+its element's slip rate (fact = 1/2 for the inner slider, whose element spans its two surfaces,
+L2/(L2 − L1) and L3/(L3 − L1) for the outer ones: OpenSees' v1Fact, v3Fact, v5Fact). Unlike the
+single pendulum, whose μ(v) reads the bearing's own velocity, the surfaces' rates are not a
+function of the bearing's state and velocity: with the sliders massless, two elements sliding
+share one force, W·d_1/L̄_1 + μ_1(ḋ_1)·W = W·d_2/L̄_2 + μ_2(ḋ_2)·W with ḋ_1 + ḋ_2 = v, and the
+split of v follows from the friction laws' slopes (relaxation rate ~(1/L̄_1 + 1/L̄_2)/μ′, large
+and unbounded as μ′ → 0 at speed, where it tends to the rate-independent split). Each element
+is therefore an elastic-viscoplastic friction disk: its friction force Q (|Q| ≤ μ_i·W: sticking,
+the elastic stiffness k_e = k_0 − W/L̄_i; beyond it the slip rate w with |Q| = μ_i(fact_i·w)·W,
+along Q), integrated by the backward-Euler step over the step's duration τ (each piece's, on a
+curved path) (:func:`_rate_return`): the elastic trial Q_tr = Q_n + k_e·Δd, and where
+|Q_tr| > μ_i·W the rate w solving |Q_tr| − μ_i(fact_i·w)·W = k_e·τ·w (one root: the left side
+falls, the right rises), Q = μ_i(fact_i·w)·W along Q_tr. Its incremental potential
+|Q|²/(2·k_e) + τ·D(w), D(w) = ∫₀ʷ μ(fact·s)·W ds, has Q as gradient and is convex, so the
+series solve (Newton with its line search) holds unchanged, with the consistent tangent
+k_e·(γ·n nᵀ + |Q|/|Q_tr|·(I − n nᵀ)), γ = q′/(q′ + k_e·τ). Constant friction is its μ_fast = μ
+case (the same return to round-off: tested); ``z`` stores Q/(μ_i·W), so |z| > 1 while an element
+slides faster than at rest. The step is first order in τ (a steady orbit's force converges at
+first order to its closed form: tested); OpenSees' element does the same step but reads each
+friction law at its element's whole deformation rate |Δd_i|/Δt from its previous Newton
+iteration. It needs the step's duration, which the plan kernels get and the one-axis kernels
+do not: a velocity-dependent bearing runs in plan (a 1D building refuses it), on Newmark's step
+(the rate form covers constant friction only: :func:`rate_form_covers`; ark5 refuses it).
 """
 
 from dataclasses import dataclass
@@ -207,13 +218,14 @@ GEOMETRY_KEYS = ("R1", "R2", "R3", "h1", "h2", "h3", "d1_nominal", "d2_nominal",
 GEOMETRY_REPLACES = ("L1", "L2", "L3", "d1", "d2", "d3")
 """The fields the geometry determines (a table gives these or :data:`GEOMETRY_KEYS`, not both)."""
 
-N_PARAMS = 16
+N_PARAMS = 22
 N_STATE_PLAN = 24  # the committed internal state, then the scratch slots of a path's pieces
 N_STATE_AXIS = N_STATE_PLAN  # one axis is the plan element with its y entries at 0
 N_STATE = N_STATE_AXIS  # the one-axis form's (the material convention)
 _W, _UY, _K0 = range(3)
 _E0 = 3  # element i's [kr, q, uy, gap] start at _E0 + 4·i
 _SCALE = 15
+_RATE = 16  # element i's [μ_fast,i·W, a·fact_i] at _RATE + 2·i (a = 0: constant friction)
 _PIECE = 12  # the scratch slots: the internal state at the end of a path's previous piece
 
 MAX_ITERATIONS = 60
@@ -234,9 +246,10 @@ PIECES = 4
 
 
 @njit(cache=True, inline="always")
-def _element(p, i, s, o, dx, dy, carried, Z):
+def _element(p, i, s, o, dx, dy, carried, Z, tau):
     """Series element ``i`` (0, 1, 2) at the trial (dx, dy) [in] from the internal state held in
-    ``s`` from slot ``o`` on (0: the committed state; _PIECE: a path's piece, module docstring):
+    ``s`` from slot ``o`` on (0: the committed state; _PIECE: a path's piece, module docstring),
+    reached in ``tau`` [s] (read by velocity-dependent friction only, :func:`_rate_return`):
     force (fx, fy) [kip], symmetric tangent (kxx, kxy, kyy) [kip/in], incremental energy φ
     [kip·in], hysteretic vector (zx, zy), sliding (0/1) and restrainer contact (0/1).
     ``carried``: the element slides with its hysteretic vector given, (Z[2i], Z[2i + 1]) (a
@@ -255,6 +268,12 @@ def _element(p, i, s, o, dx, dy, carried, Z):
         kxy = 0.0
         kyy = kr
         energy = q * (zx * dx + zy * dy)
+        sliding = 1
+    elif t > 1.0 and p[_RATE + 2 * i + 1] > 0.0:  # sliding, velocity-dependent friction
+        zx, zy, kxx, kxy, kyy, energy = _rate_return(
+            q, p[_RATE + 2 * i], p[_RATE + 2 * i + 1], uyi, tx, ty, t, tau)
+        kxx += kr
+        kyy += kr
         sliding = 1
     elif t > 1.0:  # sliding: z = t/|t|, ∂z/∂d = (I − z zᵀ)/(u_y,i·|t|)
         zx, zy = tx / t, ty / t
@@ -290,6 +309,58 @@ def _element(p, i, s, o, dx, dy, carried, Z):
     return fx, fy, kxx, kxy, kyy, energy, zx, zy, sliding, contact
 
 
+RATE_ITERATIONS = 60
+"""Newton iterations of a velocity-dependent element's slip rate (:func:`_rate_return`; it
+converges monotonically from below, quadratically)."""
+
+
+@njit(cache=True)
+def _rate_return(q, qf, b, uyi, tx, ty, t, tau):
+    """The friction of a sliding element with velocity-dependent friction (module docstring,
+    "Velocity-dependent friction"): the backward-Euler return over ``tau`` [s] from the elastic
+    trial q·(tx, ty) (|t| = ``t`` > 1), q = μ_slow·W [kip], ``qf`` = μ_fast·W [kip], ``b`` =
+    a·fact [s/in] (the friction law read at the surface's rate, fact times the element's slip
+    rate w), ``uyi`` = q/k_e [in]. The slip rate w [in/s] solves q·t − q(w) = k_e·τ·w with
+    q(w) = qf − (qf − q)·e^(−b·w), and the friction force is q(w) along t. Returns (zx, zy)
+    (the friction force over q, |z| = q(w)/q ≥ 1), its tangent ∂(q·z)/∂d (kxx, kxy, kyy)
+    [kip/in] and its incremental potential |Q|²/(2·k_e) + τ·D(w), D(w) = ∫₀ʷ q(s) ds [kip·in],
+    whose gradient in d is the force (so the series solve's line search holds). ``tau`` ≤ 0
+    (the committed state itself): elastic up to qf, then qf."""
+    ke = q / uyi
+    nx, ny = tx / t, ty / t
+    qt = q * t
+    if tau <= 0.0:
+        if qt <= qf:  # elastic: the trial force itself
+            return tx, ty, ke, 0.0, ke, 0.5 * qt * uyi * t
+        g = qf / (uyi * t)  # capped at qf: no stiffness along n, qf/|e_trial| across
+        energy = 0.5 * qf * qf / ke + qf * (uyi * t - qf / ke)
+        return qf / q * nx, qf / q * ny, g * (1.0 - nx * nx), -g * nx * ny, g * (1.0 - ny * ny), \
+            energy
+    drop = qf - q
+    ktau = ke * tau
+    w = 0.0
+    qw = q
+    slope = b * drop
+    for _ in range(RATE_ITERATIONS):
+        # g(w) = q·t − q(w) − k_e·τ·w is convex and decreasing: Newton from w = 0 stays below
+        # the root and rises to it
+        step = (qt - qw - ktau * w) / (slope + ktau)
+        w += step
+        decay = np.exp(-b * w)
+        qw = qf - drop * decay
+        slope = b * drop * decay
+        if not step > 1e-15 * w:
+            break
+    gamma = slope / (slope + ktau)  # ∂|Q|/∂|q·t|: 1 at τ = 0 (elastic), 0 for constant friction
+    g = qw / (uyi * t)
+    kxx = ke * gamma * nx * nx + g * (1.0 - nx * nx)
+    kxy = ke * gamma * nx * ny - g * nx * ny
+    kyy = ke * gamma * ny * ny + g * (1.0 - ny * ny)
+    dissipated = qf * w - drop * (1.0 - np.exp(-b * w)) / b
+    energy = 0.5 * qw * qw / ke + tau * dissipated
+    return qw / q * nx, qw / q * ny, kxx, kxy, kyy, energy
+
+
 @njit(cache=True, inline="always")
 def _committed(p, i, s, o, dux, duy):
     """Series element ``i``'s compliance (cxx, cxy, cyy) [in/kip] for going on from the state
@@ -300,6 +371,10 @@ def _committed(p, i, s, o, dux, duy):
     dx, dy, zx, zy = s[o + 2 * i], s[o + 2 * i + 1], s[o + 6 + 2 * i], s[o + 7 + 2 * i]
     g = q / uyi
     kxx, kxy, kyy = kr + g, 0.0, kr + g
+    zz = zx * zx + zy * zy
+    if zz > 1.0 + 1e-9:  # velocity-dependent friction above μ_slow: its direction
+        zz = np.sqrt(zz)
+        zx, zy = zx / zz, zy / zz
     if zx * zx + zy * zy >= 1.0 - 1e-12 and zx * dux + zy * duy > 0.0:
         kxx -= g * zx * zx
         kxy -= g * zx * zy
@@ -340,11 +415,11 @@ def series_solve(p, s, ux, uy):
     z_3x, z_3y, iterations, branch): the force [kip], the consistent tangent [kip/in], the
     internal displacements [in] and hysteretic vectors, the Newton iterations, and the branch
     code Σ_i (sliding_i·2^i + contact_i·2^(3+i)). NaN force and tangent if Newton failed."""
-    return _series(p, s, 0, ux, uy, 0, s)
+    return _series(p, s, 0, ux, uy, 0, s, 0.0)
 
 
 @njit(cache=True)
-def _series(p, s, o, ux, uy, carry, Z):
+def _series(p, s, o, ux, uy, carry, Z, tau):
     """:func:`series_solve` from the internal state held in ``s`` from slot ``o`` on (0: the
     committed state, _PIECE: the end of a path's previous piece); the elements whose bit is set
     in ``carry`` (bit i: element i) slide with their hysteretic vectors given in ``Z`` (6,)
@@ -361,9 +436,9 @@ def _series(p, s, o, ux, uy, carry, Z):
     d1x, d1y = s[o] + p1 * gx + q1 * gy, s[o + 1] + q1 * gx + r1 * gy
     d2x, d2y = s[o + 2] + p2 * gx + q2 * gy, s[o + 3] + q2 * gx + r2 * gy
     d3x, d3y = ux - d1x - d2x, uy - d1y - d2y
-    f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = _element(p, 0, s, o, d1x, d1y, cr1, Z)
-    f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = _element(p, 1, s, o, d2x, d2y, cr2, Z)
-    f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = _element(p, 2, s, o, d3x, d3y, cr3, Z)
+    f1x, f1y, a1, b1, c1, e1, z1x, z1y, s1, k1 = _element(p, 0, s, o, d1x, d1y, cr1, Z, tau)
+    f2x, f2y, a2, b2, c2, e2, z2x, z2y, s2, k2 = _element(p, 1, s, o, d2x, d2y, cr2, Z, tau)
+    f3x, f3y, a3, b3, c3, e3, z3x, z3y, s3, k3 = _element(p, 2, s, o, d3x, d3y, cr3, Z, tau)
     energy = e1 + e2 + e3
     tight = TOLERANCE * (np.sqrt(ux * ux + uy * uy) + p[_SCALE])
     size = np.inf
@@ -391,9 +466,9 @@ def _series(p, s, o, ux, uy, carry, Z):
             n1x, n1y = d1x + alpha * s1x, d1y + alpha * s1y
             n2x, n2y = d2x + alpha * s2x, d2y + alpha * s2y
             n3x, n3y = ux - n1x - n2x, uy - n1y - n2y
-            g1 = _element(p, 0, s, o, n1x, n1y, cr1, Z)
-            g2 = _element(p, 1, s, o, n2x, n2y, cr2, Z)
-            g3 = _element(p, 2, s, o, n3x, n3y, cr3, Z)
+            g1 = _element(p, 0, s, o, n1x, n1y, cr1, Z, tau)
+            g2 = _element(p, 1, s, o, n2x, n2y, cr2, Z, tau)
+            g3 = _element(p, 2, s, o, n3x, n3y, cr3, Z, tau)
             trial = g1[5] + g2[5] + g3[5]
             if trial <= energy + 1e-4 * alpha * slope + 1e-15 * abs(energy):  # (rounding of Φ)
                 break
@@ -451,14 +526,15 @@ def _path(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, pieces):
     for j in range(0, 12, 2):
         cross += abs(dx * s[j + 1] - dy * s[j])
     if tau <= 0.0 or cross == 0.0 or pieces <= 1:
-        return _series(p, s, 0, ux, uy, 0, s)
+        return _series(p, s, 0, ux, uy, 0, s, tau)
     for j in range(12):
         s[_PIECE + j] = s[j]
+    piece = tau / pieces
     for n in range(1, pieces):
         th = n / pieces
         _store(s, _PIECE, _series(p, s, _PIECE, _hermite(th, tau, u0x, v0x, ux, vx),
-                                  _hermite(th, tau, u0y, v0y, uy, vy), 0, s))
-    return _series(p, s, _PIECE, ux, uy, 0, s)
+                                  _hermite(th, tau, u0y, v0y, uy, vy), 0, s, piece))
+    return _series(p, s, _PIECE, ux, uy, 0, s, piece)
 
 
 @njit(cache=True)
@@ -542,7 +618,7 @@ def plan_rate_active(p, s, vx, vy):
     that slides and is loaded (z_i·ḋ_i > 0); the others stick, their z the radial return from
     the committed state (exact while they stick; where one starts to slide the kink search
     lands the step)."""
-    if not _on_rim(s, 0):
+    if p[_RATE + 1] > 0.0 or not _on_rim(s, 0):  # (velocity-dependent: the path form)
         return False
     carry = 1
     for i in range(1, 3):
@@ -551,7 +627,7 @@ def plan_rate_active(p, s, vx, vy):
     z = s[6:12]
     ux, uy = s[0] + s[2] + s[4], s[1] + s[3] + s[5]
     for _ in range(3):
-        r = _series(p, s, 0, ux, uy, 0, s)
+        r = _series(p, s, 0, ux, uy, 0, s, 0.0)
         kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
         fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
         keep = 0
@@ -586,7 +662,7 @@ def _carried_solve(p, s, ux, uy, z):
     element does (along a line: the one-axis force, whatever the signs of a tableau's
     coefficients)."""
     carry = int(s[_CARRY])
-    r = _series(p, s, 0, ux, uy, carry, z)
+    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
     for _ in range(3):
         back = 0
         for i in range(3):
@@ -599,7 +675,7 @@ def _carried_solve(p, s, ux, uy, z):
         if back == 0:
             break
         carry &= ~back
-        r = _series(p, s, 0, ux, uy, carry, z)
+        r = _series(p, s, 0, ux, uy, carry, z, 0.0)
     return r, carry
 
 
@@ -651,7 +727,7 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     element whose stage moved back is the force's and the commit's, as the single pendulum's;
     a rate that switched with it would stall the stage's Newton.)"""
     carry = int(s[_CARRY])
-    r = _series(p, s, 0, ux, uy, carry, z)
+    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
     for a in range(N_RATE_PLAN):
         g[a] = 0.0
         for b in range(N_RATE_PLAN):
@@ -704,7 +780,7 @@ TURN_PROBE = 1e-7
 def _loading(p, s, ux, uy, vx, vy, z, carry, which):
     """(min over the carried elements of z_i·Ḟ, its element) at (ux, uy) [in], (vx, vy) [in/s]
     and the carried z (``which`` >= 0: that element's z_i·Ḟ)."""
-    r = _series(p, s, 0, ux, uy, carry, z)
+    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
     kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
     least, at = np.inf, -1
@@ -835,6 +911,15 @@ class TripleFrictionPendulum(BearingFaces):
     u_y : float
         Displacement at which the bearing starts to slide [in], > 0 (≈ 0.01: each series
         element's sticking stiffness is 3·μ1·W/u_y), below 3·μ1·min(2·L1, L2 − L1, L3 − L1).
+    mu1_fast, mu2_fast, mu3_fast : float or None
+        Friction coefficients at high sliding speed [-] in [μ_i, 1) (Constantinou's
+        μ_i(v) = μ_fast,i − (μ_fast,i − μ_i)·e^(−a·v), v the surface's own sliding speed; μ_i is
+        then the value at rest, μ_slow): all three or none (None: constant friction).
+    a : float
+        Rate parameter of the velocity dependence [s/in], > 0 with the μ_fast; 0 without.
+
+    Velocity-dependent friction runs in plan, on Newmark's step (module docstring); a 1D
+    building refuses it (its one-axis kernels are not given the step's duration).
 
     The defaults are a typical bearing: inner L1 = 12 in and outer L2 = L3 = 88 in (the
     isolated period of the large-displacement regime III, 2π·sqrt((L2 + L3)/g), is 4.2 s),
@@ -854,6 +939,10 @@ class TripleFrictionPendulum(BearingFaces):
     mu2: float = 0.052
     mu3: float = 0.12
     u_y: float = 0.01
+    mu1_fast: float | None = None
+    mu2_fast: float | None = None
+    mu3_fast: float | None = None
+    a: float = 0.0
 
     def __post_init__(self):
         _checks.positive("W", self.W, "[kip]")
@@ -883,10 +972,27 @@ class TripleFrictionPendulum(BearingFaces):
                 f"u_y = {self.u_y!r} [in]: must be < 3·mu1·min(2·L1, L2 − L1, L3 − L1) = "
                 f"{limit!r} (the series elements' sticking stiffness 3·mu1·W/u_y must exceed "
                 "their pendulum stiffness); use a smaller u_y (≈ 0.01 in).")
+        fast = [getattr(self, f"mu{i}_fast") for i in (1, 2, 3)]
+        if all(f is None for f in fast):
+            _checks.finite("a", self.a, "[s/in]")
+            if self.a != 0.0:
+                raise ValueError(f"a = {self.a!r} [s/in]: the rate of the velocity dependence "
+                                 "needs mu1_fast, mu2_fast, mu3_fast; give them, or leave a = 0 "
+                                 "(constant friction).")
+            return
+        for i, f in enumerate(fast, start=1):
+            if f is None:
+                raise ValueError(f"mu{i}_fast = None: give all three of mu1_fast, mu2_fast, "
+                                 "mu3_fast (velocity-dependent friction on every surface) or "
+                                 "none (constant friction).")
+            slow = getattr(self, f"mu{i}")
+            _checks.in_range(f"mu{i}_fast", f, "[-]", slow, 1.0, hi_open=True)
+        _checks.positive("a", self.a, "[s/in] (needed with mu1_fast, mu2_fast, mu3_fast)")
 
     @classmethod
     def from_geometry(cls, *, R1, R2, R3, h1, h2, h3, d1_nominal, d2_nominal, d3_nominal,
-                      mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y, W=W):
+                      mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y, W=W, mu1_fast=None, mu2_fast=None,
+                      mu3_fast=None, a=0.0):
         """The bearing of a manufacturer's geometry (module docstring): effective radii
         L_i = R_i − h_i [in] and actual capacities d_i = d_i,nominal·L_i/R_i [in].
 
@@ -899,8 +1005,8 @@ class TripleFrictionPendulum(BearingFaces):
         d1_nominal, d2_nominal, d3_nominal : float
             Nominal displacement capacities on those surfaces (the slider's travel along the
             surface to its restrainer) [in], > 0.
-        mu1, mu2, mu3, u_y, W
-            As the class's fields (their defaults), μ [-], u_y [in], W [kip].
+        mu1, mu2, mu3, u_y, W, mu1_fast, mu2_fast, mu3_fast, a
+            As the class's fields (their defaults), μ [-], u_y [in], W [kip], a [s/in].
 
         The class then checks the effective bearing (e.g. μ1 < μ2 ≤ μ3); R2 − h2 and R3 − h3
         must exceed R1 − h1 (the outer surfaces are the flatter ones).
@@ -925,7 +1031,8 @@ class TripleFrictionPendulum(BearingFaces):
                     f"the inner surfaces', R{i}, h{i} an outer surface's, the flatter one: its "
                     "effective radius is the larger); check which surface is which.")
         return cls(W=W, L1=L1, L2=L2, L3=L3, d1=d1_nominal * L1 / R1, d2=d2_nominal * L2 / R2,
-                   d3=d3_nominal * L3 / R3, mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y)
+                   d3=d3_nominal * L3 / R3, mu1=mu1, mu2=mu2, mu3=mu3, u_y=u_y,
+                   mu1_fast=mu1_fast, mu2_fast=mu2_fast, mu3_fast=mu3_fast, a=a)
 
     # ---- derived quantities (the series model) ----
 
@@ -938,6 +1045,25 @@ class TripleFrictionPendulum(BearingFaces):
     def frictions(self) -> tuple:
         """The series elements' friction coefficients [-]: μ1, μ2, μ3."""
         return (self.mu1, self.mu2, self.mu3)
+
+    @property
+    def velocity_dependent(self) -> bool:
+        """Whether the surfaces' friction depends on their sliding speed (the μ_fast given)."""
+        return self.mu1_fast is not None
+
+    @property
+    def rate_factors(self) -> tuple:
+        """Each series element's surface sliding speed per unit of its own slip rate [-]: 1/2
+        (the inner slider's two surfaces share its element), L2/(L2 − L1), L3/(L3 − L1) (an
+        outer element's displacement is (L − L1)/L of its surface's), OpenSees' v1Fact,
+        v3Fact, v5Fact."""
+        return (0.5, self.L2 / (self.L2 - self.L1), self.L3 / (self.L3 - self.L1))
+
+    @property
+    def one_axis_applies(self) -> bool:
+        """Whether a 1D building can stand on this bearing (constant friction only: the one-axis
+        kernels are not given the step's duration that velocity-dependent friction reads)."""
+        return not self.velocity_dependent
 
     @property
     def gaps(self) -> tuple:
@@ -978,7 +1104,16 @@ class TripleFrictionPendulum(BearingFaces):
                                    self.gaps):
             p += [self.W / r, mu * self.W, uyi, gap]
         p.append(self.capacity)
+        fast = (self.mu1_fast, self.mu2_fast, self.mu3_fast)
+        for mu, f, fact in zip(self.frictions, fast, self.rate_factors):
+            p += [mu * self.W, 0.0] if f is None else [f * self.W, self.a * fact]
         return np.array(p, dtype=np.float64)
+
+
+def rate_form_covers(params):
+    """Whether the rate form (the coupled-friction step's) covers a bearing of these params:
+    constant friction only; velocity-dependent friction follows each step's path (Newmark)."""
+    return not params[_RATE + 1] > 0.0
 
 
 AXIS_CLASS = TripleFrictionPendulum
@@ -1017,7 +1152,11 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
     The twin equals this module's series model (module docstring): OpenSees' friction inputs
     are μ_i·k_0/(k_0 − W/L̄_i) and its u_y is u_y·μ1_OS/μ1, which make its hardening elements
     the spring plus friction disk of stiffness k_0 here; its outer surfaces are listed so that
-    the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3).
+    the one of smaller d/L is its third (OpenSees' inner gap uses d3/L3). Velocity-dependent
+    friction: ``frictionModel VelDependent`` with both coefficients scaled so and the rate
+    parameter a; OpenSees reads it at its element's whole deformation rate over the step
+    (times the same factors), from its previous iteration, where this module reads the slip
+    rate (module docstring).
 
     Its tension stiffness kvt = 1 kip/in and minimum axial force minFv = 0.1 kip only act on
     uplift, which this module does not model.
@@ -1030,16 +1169,22 @@ def opensees_plan_element(bearing, ele_tag, i_node, j_node, mat_tag, tol=1e-7):
     """
     b = bearing
     k0 = b.sticking_stiffness
-    outer = [(b.L2, b.d2, b.mu2), (b.L3, b.d3, b.mu3)]
+    fast = (b.mu1_fast, b.mu2_fast, b.mu3_fast)
+    outer = [(b.L2, b.d2, b.mu2, fast[1]), (b.L3, b.d3, b.mu3, fast[2])]
     if b.d3 / b.L3 > b.d2 / b.L2:
         outer.reverse()
-    (l2, d2, mu2), (l3, d3, mu3) = outer
+    (l2, d2, mu2, f2), (l3, d3, mu3, f3) = outer
     radii = (2.0 * b.L1, l2 - b.L1, l3 - b.L1)
-    mus = [mu * k0 / (k0 - b.W / r) for mu, r in zip((b.mu1, mu2, mu3), radii)]
+    scales = [k0 / (k0 - b.W / r) for r in radii]
+    mus = [mu * c for mu, c in zip((b.mu1, mu2, mu3), scales)]
     u_y = b.u_y * mus[0] / b.mu1
     friction = [mat_tag, mat_tag + 1, mat_tag + 2]
     vertical, rot_z, rot_x, rot_y = mat_tag + 3, mat_tag + 4, mat_tag + 5, mat_tag + 6
-    commands = [("frictionModel", "Coulomb", tag, mu) for tag, mu in zip(friction, mus)]
+    if b.velocity_dependent:
+        commands = [("frictionModel", "VelDependent", tag, mu, f * c, b.a)
+                    for tag, mu, f, c in zip(friction, mus, (fast[0], f2, f3), scales)]
+    else:
+        commands = [("frictionModel", "Coulomb", tag, mu) for tag, mu in zip(friction, mus)]
     commands += [("uniaxialMaterial", "Elastic", tag, AXIAL_STIFFNESS)
                  for tag in (vertical, rot_z, rot_x, rot_y)]
     commands.append(("element", "TripleFrictionPendulum", ele_tag, i_node, j_node, *friction,

@@ -274,6 +274,15 @@ def _check_plan_method(name, packed):
             f"method = 'ark5' on plan bearings without a rate form ({kinds}): their friction "
             "state would follow a path guessed between stage values (first order in the step). "
             "Use Integrator(method='newmark'), the default of a plan run on these bearings.")
+    if name == "ark5":
+        for k, p in zip(packed.bearing_kind, packed.bearing_P):
+            kind = bearing_registry.kinds()[k]
+            if not bearing_registry.rate_form_covers(kind, p):
+                raise ValueError(
+                    f"method = 'ark5' on a bearing its kind's rate form does not cover ({kind}: "
+                    "a triple pendulum's velocity-dependent friction): its friction would be "
+                    "a backward-Euler return over each stage (first order in the step). Use "
+                    "Integrator(method='newmark'), the default of a plan run on this bearing.")
 
 
 def _bundles(packed, ag, u, v, settings):

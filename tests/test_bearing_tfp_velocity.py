@@ -1,0 +1,228 @@
+"""The triple friction pendulum's velocity-dependent friction (femoat.bearings.
+triple_friction_pendulum, ``mu1_fast``, ``mu2_fast``, ``mu3_fast``, ``a``): each series element
+an elastic-viscoplastic friction disk whose strength follows Constantinou's law at its surface's
+sliding speed, stepped by backward Euler over the step's duration.
+
+Notation as in the module: series elements i = 1, 2, 3 of radius L̄ = 2·L1, L2 − L1, L3 − L1,
+restoring stiffness kr_i = W/L̄_i, sticking stiffness k_0 = 3·μ1·W/u_y, elastic disk stiffness
+k_e,i = k_0 − kr_i, surface speed fact_i·(slip rate), fact = 1/2, L2/(L2 − L1), L3/(L3 − L1).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from femoat.bearings import triple_friction_pendulum as tfp
+from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+
+FAST = dict(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)
+BEARING = TripleFrictionPendulum(**FAST)
+
+
+def mu_of(b, i, speed):
+    """Surface i's (1, 2, 3) friction coefficient [-] at its sliding speed [in/s]."""
+    slow, fast = b.frictions[i - 1], getattr(b, f"mu{i}_fast")
+    return fast - (fast - slow) * math.exp(-b.a * speed)
+
+
+def drive(b, path, dt, velocities):
+    """Trial then commit the plan kernels along ``path`` (n, 2) [in], one step of ``dt`` [s] per
+    point, the velocities (n, 2) [in/s] at the points (the start at rest at the first point's
+    predecessor, the origin): the force magnitudes (n,) [kip] and the final state."""
+    p, s = b.params(), b.initial_state_plan()
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    u0, v0 = np.zeros(2), np.zeros(2)
+    out = np.zeros(len(path))
+    for j in range(len(path)):
+        args = (*u0, *v0, *path[j], *velocities[j], dt)
+        tfp.plan_trial(p, s, *args, f, k, c)
+        tfp.plan_commit(p, s, *args)
+        out[j] = math.hypot(*f)
+        u0, v0 = path[j], velocities[j]
+    return out, s
+
+
+def orbit(radius, period, n_per_turn, turns):
+    """A radial ramp to (radius, 0) in 0.25 s, then ``turns`` turns of the circle of ``radius``
+    [in] and ``period`` [s], ``n_per_turn`` steps a turn: (path, velocities, dt)."""
+    dt = period / n_per_turn
+    n0 = max(1, round(0.25 / dt))
+    ramp = np.column_stack([radius * np.arange(1, n0 + 1) / n0, np.zeros(n0)])
+    ramp_v = np.column_stack([np.full(n0, radius / (n0 * dt)), np.zeros(n0)])
+    ramp_v[-1] = 0.0, 0.0
+    om = 2.0 * math.pi / period
+    th = om * dt * np.arange(1, turns * n_per_turn + 1)
+    circle = radius * np.column_stack([np.cos(th), np.sin(th)])
+    circle_v = radius * om * np.column_stack([-np.sin(th), np.cos(th)])
+    return np.vstack([ramp, circle]), np.vstack([ramp_v, circle_v]), dt
+
+
+def steady_circle_force(b, radius, period):
+    """The steady force magnitude [kip] on a circle of ``radius`` [in] run at constant speed
+    with only the inner element sliding (elements 2, 3 sticking: d = F/k_0 each), the
+    continuous model. In the frame turning with the orbit (complex amplitudes), element 1's
+    slip p = ρ·e^(iφ) turns at ω, so its slip rate is ω·ρ along i·p, and its friction force,
+    along the slip rate, is Q = i·q·e^(iφ), q = μ1(fact_1·ω·ρ)·W. Its displacement
+    d_1 = p + Q/k_e, the force F = kr·d_1 + Q, and u = d_1 + 2·F/k_0 = r:
+        r = e^(iφ)·(ρ·c + i·q·α),  c = 1 + 2·kr/k_0,  α = c/k_e + 2/k_0,
+    so r² = (ρ·c)² + (q·α)² fixes ρ (the left side grows with ρ: one root) and
+    |F| = |kr·ρ + i·q·(1 + kr/k_e)|."""
+    kr, k0 = b.W / b.radii[0], b.sticking_stiffness
+    ke = k0 - kr
+    om = 2.0 * math.pi / period
+    c, alpha = 1.0 + 2.0 * kr / k0, (1.0 + 2.0 * kr / k0) / ke + 2.0 / k0
+
+    def q(rho):
+        return b.W * mu_of(b, 1, b.rate_factors[0] * om * rho)
+
+    rho = brentq(lambda r: (r * c) ** 2 + (q(r) * alpha) ** 2 - radius ** 2, 0.0, radius,
+                 xtol=1e-15, rtol=1e-15)
+    return math.hypot(kr * rho, q(rho) * (1.0 + kr / ke)), q(rho)
+
+
+def test_a_steady_orbit_converges_at_first_order_to_its_closed_form():
+    # A circle of 0.5 in in 2 s (the inner slider's surfaces at ~0.8 in/s, μ1 ≈ 0.022, between
+    # its μ_slow 0.012 and μ_fast 0.03; the outer elements stick: |Q_2| = F·(1 − kr_2/k_0)
+    # < μ2·W = 1.72 kip), after four turns, at 500 to 2000 steps a turn: the backward-Euler
+    # return is first order, so the error halves with the step (measured 7.4e-4, 3.7e-4,
+    # 1.8e-4 kip: ratios 2.00), and the first-order term extrapolates out (Richardson: 2·f(h/2)
+    # − f(h) within 2e-6 of the closed form's 0.986 kip).
+    force, q = steady_circle_force(BEARING, 0.5, 2.0)
+    assert BEARING.mu1 * BEARING.W < q < BEARING.mu1_fast * BEARING.W
+    assert force * (1.0 - BEARING.W / BEARING.radii[1] / BEARING.sticking_stiffness) \
+        < BEARING.mu2 * BEARING.W
+    errors = []
+    for n in (500, 1000, 2000):
+        path, vel, dt = orbit(0.5, 2.0, n, 4)
+        f, _ = drive(BEARING, path, dt, vel)
+        assert np.ptp(f[-n // 2:]) < 1e-9 * force  # steady
+        errors.append(f[-1] - force)
+    assert 0.0 < errors[-1] < 2e-4
+    for coarse, fine in zip(errors, errors[1:]):
+        assert coarse / fine == pytest.approx(2.0, rel=0.02)
+    assert abs(2.0 * errors[-1] - errors[-2]) < 2e-6 * force
+
+
+@pytest.mark.parametrize("radius", [0.5, 4.0, 20.0])
+def test_equal_slow_and_fast_friction_is_the_constant_friction_bearing(radius):
+    # μ_fast = μ on every surface: μ(v) is constant, and the backward-Euler return with a
+    # constant strength is the radial return of the constant-friction elements (the slip
+    # |Q_tr| − q over k_e): the same forces to round-off, along a spiral through the sliding
+    # regimes that reach this radius (I to III).
+    same = TripleFrictionPendulum(mu1_fast=0.012, mu2_fast=0.052, mu3_fast=0.12, a=2.0)
+    path, vel, dt = orbit(radius, 2.0, 400, 2)
+    f_rate, s_rate = drive(same, path, dt, vel)
+    f_const, s_const = drive(TripleFrictionPendulum(), path, dt, vel)
+    np.testing.assert_allclose(f_rate, f_const, rtol=0.0, atol=1e-10 * f_const.max())
+    np.testing.assert_allclose(s_rate[:12], s_const[:12], rtol=0.0, atol=1e-10 * radius)
+
+
+def test_slow_and_fast_limits_are_the_constant_friction_bearings():
+    # Along one axis, 2 in out and back in regime I-II: run slowly (1 000 s a leg: surface
+    # speeds ≤ 0.002 in/s, μ within a·v·(μ_fast − μ) ≤ 4e-5 of μ_slow) it is the bearing of
+    # constant friction μ_slow; run fast with a huge a (every slip rate ≫ 1/a, μ = μ_fast) it is
+    # the bearing of constant friction μ_fast (and the same sticking stiffness). The slow run
+    # within W·a·v·(μ_fast − μ_slow) of the fastest surface; the fast one within 1e-6 (a slip
+    # rate of a few 1e-6 in/s already reaches μ_fast: e^(−a·w) → 0).
+    u = np.concatenate([np.linspace(0.0, 2.0, 401)[1:], np.linspace(2.0, -0.5, 501)[1:]])
+    path = np.column_stack([u, np.zeros_like(u)])
+    slow_b = TripleFrictionPendulum(**FAST)
+    const_slow = TripleFrictionPendulum()
+    fast_b = TripleFrictionPendulum(**{**FAST, "a": 1e6})
+    # (the same sticking stiffness k_0 = 3·μ1_slow·W/u_y: the u_y of μ_fast's bearing scaled)
+    const_fast = TripleFrictionPendulum(mu1=0.03, mu2=0.08, mu3=0.15, u_y=0.01 * 0.03 / 0.012)
+    dt_slow = 1000.0 / 400  # [s] a step: 0.005 in in 2.5 s
+    f, _ = drive(slow_b, path, dt_slow, np.zeros_like(path))
+    g, _ = drive(const_slow, path, dt_slow, np.zeros_like(path))
+    assert np.max(np.abs(f - g)) < slow_b.W * 1.0 * 0.002 * 0.07
+    f, _ = drive(fast_b, path, 1e-3, np.zeros_like(path))
+    g, _ = drive(const_fast, path, 1e-3, np.zeros_like(path))
+    assert np.max(np.abs(f - g)) < 1e-6 * g.max()
+
+
+def test_the_tangent_is_the_derivative_of_the_force():
+    # The consistent tangent of one series solve with velocity-dependent elements (each
+    # k_e·(γ·n nᵀ + |Q|/|Q_tr|·(I − n nᵀ)) in series, γ = q′/(q′ + k_e·τ)) against central
+    # differences of its force, at trial points of a 2 ms step from a state sliding in
+    # regime II (one piece: a path's tangent is its last piece's).
+    b = BEARING
+    p, s = b.params(), b.initial_state_plan()
+    path, vel, dt = orbit(3.0, 2.0, 400, 1)
+    u0, v0 = np.zeros(2), np.zeros(2)
+    for j in range(300):
+        tfp.plan_commit(p, s, *u0, *v0, *path[j], *vel[j], dt)
+        u0, v0 = path[j], vel[j]
+    assert math.hypot(*s[8:10]) > 1.0  # element 2 slides, faster than at rest
+
+    def solve(u):
+        return tfp._path(p, s, *u0, *v0, *u, *v0, dt, 1)
+
+    for du in ([0.01, 0.0], [0.004, -0.007], [-0.002, 0.003]):
+        u = u0 + np.array(du)
+        r = solve(u)
+        k = np.array([[r[2], r[3]], [r[3], r[4]]])
+        h = 1e-7
+        numeric = np.zeros((2, 2))
+        for col in range(2):
+            e = np.zeros(2)
+            e[col] = h
+            plus, minus = solve(u + e), solve(u - e)
+            numeric[:, col] = (np.array(plus[:2]) - np.array(minus[:2])) / (2.0 * h)
+        np.testing.assert_allclose(k, numeric, rtol=0.0, atol=1e-5 * np.abs(k).max())
+
+
+def test_a_slider_keeps_its_rate_strength_at_the_committed_state():
+    # A zero step (τ = 0, the committed state itself, as an event evaluates it) returns the
+    # committed friction force, above μ_slow·W while the slider was fast: the force is
+    # continuous across a commit.
+    b = BEARING
+    p, s = b.params(), b.initial_state_plan()
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    u0 = np.zeros(2)
+    for j in range(1, 201):  # out along x at 10 in/s
+        u = np.array([0.005 * j, 0.0])
+        tfp.plan_trial(p, s, *u0, 10.0, 0.0, *u, 10.0, 0.0, 5e-4, f, k, c)
+        tfp.plan_commit(p, s, *u0, 10.0, 0.0, *u, 10.0, 0.0, 5e-4)
+        u0 = u
+    moving = f.copy()
+    tfp.plan_trial(p, s, *u0, 0.0, 0.0, *u0, 0.0, 0.0, 0.0, f, k, c)
+    np.testing.assert_allclose(f, moving, rtol=1e-12)
+    assert math.hypot(*s[6:8]) > 1.5  # the inner element's friction, over μ_slow·W
+
+
+@pytest.mark.parametrize(("changes", "name"), [
+    ({"mu1_fast": 0.03}, "mu2_fast"),
+    ({**FAST, "mu3_fast": None}, "mu3_fast"),
+    ({**FAST, "mu2_fast": 0.04}, "mu2_fast"),
+    ({**FAST, "mu1_fast": 1.0}, "mu1_fast"),
+    ({**FAST, "a": 0.0}, "a"),
+    ({**FAST, "a": float("nan")}, "a"),
+    ({"a": 1.0}, "a"),
+])
+def test_invalid_velocity_dependence_names_the_parameter(changes, name):
+    with pytest.raises(ValueError, match=rf"^{name} = "):
+        TripleFrictionPendulum(**changes)
+
+
+def test_a_1d_building_refuses_velocity_dependent_friction():
+    from femoat.structure.building import Building
+
+    with pytest.raises(ValueError, match="velocity-dependent friction.*plan building"):
+        Building(isolator=BEARING)
+
+
+def test_a_plan_run_defaults_to_newmark_and_refuses_ark5():
+    from femoat.ground_motions import GroundMotion, RecordPair
+    from femoat.integration import Integrator
+    from femoat.plan import PlanBuilding, PlanModel
+    from femoat.run import plan_method, run
+
+    model = PlanModel(building=PlanBuilding(isolator=BEARING))
+    assert plan_method(model) == "newmark"
+    assert plan_method(PlanModel(building=PlanBuilding(isolator=TripleFrictionPendulum()))) \
+        == "ark5"
+    quiet = GroundMotion(np.zeros(10), 0.01, name="zero")
+    with pytest.raises(ValueError, match="velocity-dependent friction.*newmark"):
+        run(model, RecordPair(quiet, quiet), integrator=Integrator(method="ark5"))
