@@ -206,11 +206,17 @@ def test_invalid_velocity_dependence_names_the_parameter(changes, name):
         TripleFrictionPendulum(**changes)
 
 
-def test_a_1d_building_refuses_velocity_dependent_friction():
+def test_a_1d_model_refuses_velocity_dependent_friction():
+    # A 1D building may hold the bearing (a plan scenario reads its building on one axis
+    # first), but a 1D model of it is refused where it is packed, before any run.
+    from femoat.plan import PlanBuilding, PlanModel
     from femoat.structure.building import Building
+    from femoat.run import packed_model
 
+    building = Building(isolator=BEARING)
+    assert PlanBuilding.from_building(building).isolator == BEARING
     with pytest.raises(ValueError, match="velocity-dependent friction.*plan building"):
-        Building(isolator=BEARING)
+        packed_model(PlanModel(building=PlanBuilding(isolator=BEARING)).along("x"))
 
 
 def test_a_plan_run_defaults_to_newmark_and_refuses_ark5():
@@ -226,3 +232,28 @@ def test_a_plan_run_defaults_to_newmark_and_refuses_ark5():
     quiet = GroundMotion(np.zeros(10), 0.01, name="zero")
     with pytest.raises(ValueError, match="velocity-dependent friction.*newmark"):
         run(model, RecordPair(quiet, quiet), integrator=Integrator(method="ark5"))
+
+
+def test_scenario_and_suite_files_take_the_velocity_dependence():
+    # [building.isolator] type = "tfp" with the μ_fast and a: a plan scenario builds the
+    # bearing (its default method Newmark), a 1D one is refused when packed, naming the fix;
+    # a suite may vary mu2_fast like any isolator field.
+    from femoat.run import packed_model, plan_method
+    from femoat.scenario import model_from_dict
+    from femoat.suite.model import build_variation
+    from femoat.suite.variations import allowed_keys, apply, variations_from_dict
+
+    iso = {"type": "tfp", **FAST}
+    plan = model_from_dict({"building": {"plan": True, "isolator": iso}})
+    assert plan.building.isolator.velocity_dependent
+    assert plan.building.isolator.rate_factors == (0.5, 88.0 / 76.0, 88.0 / 76.0)
+    assert plan_method(plan) == "newmark"
+    one_axis = model_from_dict({"building": {"isolator": iso}})
+    with pytest.raises(ValueError, match=r"velocity-dependent friction .*no mu_fast"):
+        packed_model(one_axis)
+    assert {"mu1_fast", "mu2_fast", "mu3_fast", "a"} <= allowed_keys()["building.isolator"]
+    _, combos = variations_from_dict({"building.isolator.mu2_fast": [0.06, 0.1]})
+    base = {"building": {"plan": True, "isolator": iso}}
+    isos = [build_variation(apply(base, c)).pounding.building.isolator for c in combos]
+    assert [b.mu2_fast for b in isos] == [0.06, 0.1]
+    assert [b.params()[tfp._RATE + 2] for b in isos] == [0.06 * 33.0, 0.1 * 33.0]

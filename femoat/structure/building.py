@@ -173,11 +173,4 @@ class Building(StoryBuilding):
                                  "a 1D building takes its one-axis form (.uniaxial()).")
             names = ", ".join(c.__name__ for c in bearings)
             raise ValueError(f"isolator must be a bearing ({names}), an Elastic spring or None.")
-        if not getattr(self.isolator, "one_axis_applies", True):
-            raise ValueError(
-                f"isolator: this {type(self.isolator).__name__} has velocity-dependent friction "
-                "(mu1_fast, mu2_fast, mu3_fast), which femoat models in plan only (each surface's "
-                "friction reads its own sliding rate over the step). Run it on a plan building "
-                "(femoat.plan.PlanBuilding, one record component along x for a 1D motion), or "
-                "give the 1D building constant friction (no mu_fast).")
         self._check_shared()
