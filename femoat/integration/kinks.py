@@ -16,7 +16,7 @@ from femoat.bearings.dispatch import (
 from femoat.compilation.jit import njit
 from femoat.integration.bundles import rate_scratch
 from femoat.integration.interpolants import crossing, hermite
-from femoat.structure.materials.kernels import material_commit, material_trial
+from femoat.structure.materials.kernels import material_commit, material_path_only, material_trial
 
 
 KINK_RATIO = 0.5
@@ -229,6 +229,8 @@ def find_kink(hh, model, state, work, fine):
     theta = 2.0
     el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
     for e in range(el_code.size):
+        if material_path_only(el_code[e], el_P[e]):
+            continue  # (its stick-slip is smooth: the slip rate starts from zero)
         d0, d1 = state.el_d[e], work.ed[e]
         dv0 = _element_rates(e, model, state.v)
         dv1 = _element_rates(e, model, work.v)
@@ -284,12 +286,12 @@ def find_turn(hh, model, state, work, fine):
         if th <= KINK_RESOLUTION or th >= 1.0:
             continue
         d, _ = hermite(th, hh, state.el_d[e], dv0, work.ed[e], dv1)
-        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0)
+        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0, th * hh)
         for k in range(s_tmp.size):
             s_tmp[k] = el_S[e, k]
-        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0)
+        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0, th * hh)
         back = d - TURN_PROBE * (abs(d) + abs(state.el_d[e]) + 1e-6) * (1.0 if dv0 > 0.0 else -1.0)
-        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0)
+        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0, 0.0)
         if abs(k_back - k_on) <= KINK_RATIO * max(abs(k_on), abs(k_back)):
             continue
         th = min(1.0, th + KINK_RESOLUTION)
