@@ -1,0 +1,204 @@
+"""The triple friction pendulum with velocity-dependent friction: the accuracy of its
+backward-Euler return on a steady orbit (against the closed form, and OpenSees' element), and
+the cost and accuracy of whole runs on it, 1D and plan, beside the constant-friction bearing.
+
+    python benchmarks/tfp_velocity.py [--no-opensees]
+
+Bearing: ``TripleFrictionPendulum(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)`` (the
+defaults' μ as μ_slow). Prints:
+
+* a circle of 0.5 in in 2 s (regime I, the inner slider's surfaces at ~0.8 in/s), 3 turns, at
+  125 to 4000 steps a turn: femoat's steady force and its error against the closed form of the
+  continuous model (tests/test_bearing_tfp_velocity.py derives it), and OpenSees'
+  ``TripleFrictionPendulum`` with ``VelDependent`` friction on the same imposed orbit: its last
+  force and how much it swings over the last half turn (a steady orbit's force is constant);
+* the paper building in plan on the bearing in the square concrete moat (law H), the first 8 s
+  of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°; and in 1D (the
+  paper's moat, Erzincan, 6 s): Newmark at its default rtol and at 1e-6, 1e-7 against 1e-8:
+  steps, loop CPU, the worst peak's relative error; the constant-friction bearing at its
+  default for scale.
+"""
+
+import argparse
+import math
+import time
+
+import numpy as np
+from scipy.optimize import brentq
+
+from femoat.bearings import triple_friction_pendulum as tfp
+from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+from femoat.ground_motions import GroundMotion, RecordPair
+from femoat.integration import Integrator
+from femoat.paper import paper_motion
+from femoat.plan import PlanBuilding, PlanModel
+from femoat.run import run
+
+BEARING = TripleFrictionPendulum(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)
+RADIUS, PERIOD = 0.5, 2.0
+
+
+def circle(n, turns=3):
+    """(path, velocities, dt): a ramp to (RADIUS, 0) in 0.25 s, then ``turns`` turns."""
+    dt = PERIOD / n
+    n0 = max(1, round(0.25 / dt))
+    ramp = np.column_stack([RADIUS * np.arange(1, n0 + 1) / n0, np.zeros(n0)])
+    ramp_v = np.column_stack([np.full(n0, RADIUS / (n0 * dt)), np.zeros(n0)])
+    om = 2.0 * math.pi / PERIOD
+    th = om * dt * np.arange(1, turns * n + 1)
+    path = np.vstack([ramp, RADIUS * np.column_stack([np.cos(th), np.sin(th)])])
+    vel = np.vstack([ramp_v, RADIUS * om * np.column_stack([-np.sin(th), np.cos(th)])])
+    return path, vel, dt
+
+
+def femoat_forces(path, vel, dt):
+    p, s = BEARING.params(), BEARING.initial_state_plan()
+    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+    u0, v0 = np.zeros(2), np.zeros(2)
+    out = np.zeros(len(path))
+    for j in range(len(path)):
+        args = (*u0, *v0, *path[j], *vel[j], dt)
+        tfp.plan_trial(p, s, *args, f, k, c)
+        tfp.plan_commit(p, s, *args)
+        out[j] = math.hypot(*f)
+        u0, v0 = path[j], vel[j]
+    return out
+
+
+def closed_form():
+    """The steady force [kip] of the continuous model on the circle (the test's derivation)."""
+    b = BEARING
+    kr, k0 = b.W / b.radii[0], b.sticking_stiffness
+    ke, om = k0 - kr, 2.0 * math.pi / PERIOD
+    c, alpha = 1.0 + 2.0 * kr / k0, (1.0 + 2.0 * kr / k0) / ke + 2.0 / k0
+
+    def q(rho):
+        v = b.rate_factors[0] * om * rho
+        return b.W * (b.mu1_fast - (b.mu1_fast - b.mu1) * math.exp(-b.a * v))
+
+    rho = brentq(lambda r: (r * c) ** 2 + (q(r) * alpha) ** 2 - RADIUS ** 2, 0.0, RADIUS,
+                 xtol=1e-15, rtol=1e-15)
+    return math.hypot(kr * rho, q(rho) * (1.0 + kr / ke))
+
+
+def opensees_forces(path, dt):
+    """OpenSees' element on the imposed orbit, one transient step of dt a point (None if
+    openseespy is missing or fails)."""
+    try:
+        import openseespy.opensees as ops
+    except (ImportError, RuntimeError):
+        return None
+    ops.wipe()
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    ops.node(1, 0.0, 0.0, 0.0)
+    ops.node(2, 0.0, 0.0, 0.0)
+    ops.fix(1, 1, 1, 1, 1, 1, 1)
+    ops.fix(2, 0, 0, 0, 1, 1, 1)
+    ops.mass(2, 1e-9, 1e-9, 1e-9, 0.0, 0.0, 0.0)
+    for name, *args in tfp.opensees_plan_element(BEARING, 1, 1, 2, 1)[0]:
+        getattr(ops, name)(*args)
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    ops.load(2, 0.0, 0.0, -BEARING.W, 0.0, 0.0, 0.0)
+    for name, *args in (("constraints", "Plain"), ("numberer", "Plain"),
+                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 20),
+                        ("algorithm", "Newton"), ("integrator", "LoadControl", 1.0),
+                        ("analysis", "Static")):
+        getattr(ops, name)(*args)
+    ops.analyze(1)
+    ops.loadConst("-time", 0.0)
+    ops.wipeAnalysis()
+    for dof in (1, 2):
+        values = [0.0, *map(float, path[:, dof - 1]), float(path[-1, dof - 1])]
+        ops.timeSeries("Path", 10 + dof, "-dt", dt, "-values", *values)
+        ops.pattern("Plain", 10 + dof, 10 + dof)
+        ops.sp(2, dof, 1.0)
+    for name, *args in (("constraints", "Transformation"), ("numberer", "Plain"),
+                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 50),
+                        ("algorithm", "Newton"), ("integrator", "Newmark", 0.5, 0.25),
+                        ("analysis", "Transient")):
+        getattr(ops, name)(*args)
+    out = np.zeros(len(path))
+    for i in range(len(path)):
+        if ops.analyze(1, dt) != 0:
+            ops.wipe()
+            return None
+        force = ops.eleResponse(1, "globalForce")
+        out[i] = math.hypot(force[6], force[7])
+    ops.wipe()
+    return out
+
+
+def orbit_table(with_opensees):
+    exact = closed_form()
+    print(f"steady circle r = {RADIUS} in, T = {PERIOD} s (regime I): closed form {exact:.9f} kip")
+    print(f"{'steps/turn':>10} {'dt [ms]':>8} {'femoat':>12} {'error':>10} {'opensees':>12} "
+          f"{'error':>10} {'swing':>9}")
+    for n in (125, 250, 500, 1000, 2000, 4000):
+        path, vel, dt = circle(n)
+        f = femoat_forces(path, vel, dt)[-1]
+        line = f"{n:10d} {1e3 * dt:8.2f} {f:12.9f} {(f - exact) / exact:10.2e}"
+        g = opensees_forces(path, dt) if with_opensees else None
+        if g is not None:
+            line += (f" {g[-1]:12.9f} {(g[-1] - exact) / exact:10.2e} "
+                     f"{np.ptp(g[-n // 2:]) / exact:9.1e}")
+        print(line, flush=True)
+
+
+def _first(m, seconds):
+    n = int(round(seconds / m.dt)) + 1
+    return GroundMotion(m.accel_g[:n], m.dt, name=m.name)
+
+
+def _peaks(r, plan):
+    pk = r.peaks
+    if plan:
+        tags = ("px", "mx", "py", "my")
+        return np.array([pk["peak_plan_base_displacement"],
+                         *[pk[f"peak_impact_force_{t}"] for t in tags],
+                         *pk["peak_drift_x"], *pk["peak_drift_y"]])
+    return np.array([pk["peak_base_displacement"], pk["peak_impact_force_pos"],
+                     pk["peak_impact_force_neg"], *pk["peak_drift"]])
+
+
+def runs_table():
+    m = paper_motion()
+    m8 = _first(m, 8.0)
+    pair = RecordPair(m8, GroundMotion(-0.6 * m8.accel_g[::-1], m8.dt, name="y"), angle=30.0)
+    cases = (("plan", True, pair), ("1D", False, _first(m, 6.0)))
+    for label, plan, motion in cases:
+        def model(b):
+            mod = PlanModel(building=PlanBuilding(isolator=b))
+            return mod if plan else mod.along("x")
+
+        run(model(BEARING), motion)  # (load the kernels)
+        ref = _peaks(run(model(BEARING), motion,
+                         integrator=Integrator(method="newmark", rtol=1e-8)), plan)
+        print(f"\n{label}: velocity-dependent bearing on Newmark, the worst peak against rtol 1e-8")
+        print(f"{'rtol':>8} {'steps':>8} {'CPU [s]':>8} {'worst peak':>10}")
+        for rtol in (None, 1e-6, 1e-7):
+            integ = None if rtol is None else Integrator(method="newmark", rtol=rtol)
+            t = time.process_time()
+            r = run(model(BEARING), motion, integrator=integ, history=False)
+            cpu = time.process_time() - t
+            err = np.max(np.abs(_peaks(r, plan) / ref - 1.0))
+            name = "default" if rtol is None else f"{rtol:.0e}"
+            print(f"{name:>8} {r.peaks['steps']:8d} {cpu:8.3f} {err:10.1e}", flush=True)
+        const = TripleFrictionPendulum()
+        run(model(const), motion)
+        t = time.process_time()
+        r = run(model(const), motion, history=False)
+        print(f"constant friction (μ_slow) at its default ({r.meta['info']['method']}): "
+              f"{r.peaks['steps']} steps, {time.process_time() - t:.3f} s")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--no-opensees", action="store_true")
+    args = ap.parse_args(argv)
+    orbit_table(not args.no_opensees)
+    runs_table()
+
+
+if __name__ == "__main__":
+    main()
