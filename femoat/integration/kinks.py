@@ -229,8 +229,6 @@ def find_kink(hh, model, state, work, fine):
     theta = 2.0
     el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
     for e in range(el_code.size):
-        if material_path_only(el_code[e], el_P[e]):
-            continue  # (its stick-slip is smooth: the slip rate starts from zero)
         d0, d1 = state.el_d[e], work.ed[e]
         dv0 = _element_rates(e, model, state.v)
         dv1 = _element_rates(e, model, work.v)
@@ -242,6 +240,8 @@ def find_kink(hh, model, state, work, fine):
         _, k1, _ = material_trial(el_code[e], el_P[e], el_S[e], d1, dv1)
         if abs(k1 - k0) <= KINK_RATIO * max(abs(k0), abs(k1)):
             continue
+        if material_path_only(el_code[e], el_P[e]):
+            continue  # (a tangent that depends on the step; its stick-slip is smooth)
         for _ in range(KINK_BISECTIONS):
             mid = 0.5 * (lo + hi)
             d, dth = hermite(mid, hh, d0, dv0, d1, dv1)
