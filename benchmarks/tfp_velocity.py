@@ -1,6 +1,6 @@
 """The triple friction pendulum with velocity-dependent friction: the accuracy of its
 backward-Euler return on a steady orbit (against the closed form, and OpenSees' element), and
-the cost and accuracy of whole runs on it, 1D and plan, beside the constant-friction bearing.
+the cost and accuracy of a plan run on it, beside the constant-friction bearing.
 
     python benchmarks/tfp_velocity.py [--no-opensees]
 
@@ -13,10 +13,9 @@ defaults' μ as μ_slow). Prints:
   ``TripleFrictionPendulum`` with ``VelDependent`` friction on the same imposed orbit: its last
   force and how much it swings over the last half turn (a steady orbit's force is constant);
 * the paper building in plan on the bearing in the square concrete moat (law H), the first 8 s
-  of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°; and in 1D (the
-  paper's moat, Erzincan, 6 s): Newmark at its default rtol and at 1e-6, 1e-7 against 1e-8:
-  steps, loop CPU, the worst peak's relative error; the constant-friction bearing at its
-  default for scale.
+  of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°: Newmark at its
+  default rtol and at 1e-6, 1e-7 against 1e-8: steps, loop CPU, the worst peak's relative
+  error; the constant-friction bearing at its default for scale.
 """
 
 import argparse
@@ -165,11 +164,9 @@ def runs_table():
     m = paper_motion()
     m8 = _first(m, 8.0)
     pair = RecordPair(m8, GroundMotion(-0.6 * m8.accel_g[::-1], m8.dt, name="y"), angle=30.0)
-    cases = (("plan", True, pair), ("1D", False, _first(m, 6.0)))
-    for label, plan, motion in cases:
+    for label, plan, motion in (("plan", True, pair),):
         def model(b):
-            mod = PlanModel(building=PlanBuilding(isolator=b))
-            return mod if plan else mod.along("x")
+            return PlanModel(building=PlanBuilding(isolator=b))
 
         run(model(BEARING), motion)  # (load the kernels)
         ref = _peaks(run(model(BEARING), motion,

@@ -92,8 +92,7 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
         duration = motion.duration + extra_time
-    integ = integrator or (Integrator(method=plan_method(model)) if plan else
-                           axis_integrator(model))
+    integ = integrator or (Integrator(method=plan_method(model)) if plan else Integrator())
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
@@ -145,19 +144,6 @@ def plan_method(model):
         return PLAN_METHOD
     covered = registry.rate_form_covers(registry.kinds()[kind], iso.params())
     return PLAN_METHOD if covered else PLAN_METHOD_PATH
-
-
-def axis_integrator(model):
-    """The default Integrator of a 1D run of ``model``: ``Integrator()``, or Newmark's step on a
-    bearing that takes it only (:func:`femoat.bearings.registry.path_only`: the triple
-    pendulum's velocity-dependent friction)."""
-    from femoat.bearings import registry
-
-    iso = model.building.isolator
-    kind = None if iso is None else registry.kind_of(iso)
-    if kind is not None and registry.path_only(registry.kinds()[kind], iso.params()):
-        return Integrator(method=PLAN_METHOD_PATH)
-    return Integrator()
 
 
 def _limits(model, packed, collapse):

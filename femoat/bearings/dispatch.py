@@ -47,7 +47,6 @@ from femoat.bearings.triple_friction_pendulum import (
     plan_energy as _plan_energy_2,
     plan_branch as _plan_branch_2,
     plan_turn_direction as _plan_turn_direction_2,
-    axis_path_only as _axis_path_only_2,
     plan_rate_active as _plan_rate_active_2,
     plan_rate_state as _plan_rate_state_2,
     plan_rate as _plan_rate_2,
@@ -70,19 +69,19 @@ _registry.check_dispatcher(KINDS)
 
 
 @njit(cache=True)
-def bearing_axis_trial(kind, p, s, u, v, tau=0.0):
+def bearing_axis_trial(kind, p, s, u, v):
     """:func:`axis_trial` of bearing kind ``kind``."""
     if kind == 0:
         return _axis_trial_0(p, s, u, v)
     if kind == 1:
         return _axis_trial_1(p, s, u, v)
     if kind == 2:
-        return _axis_trial_2(p, s, u, v, tau)
+        return _axis_trial_2(p, s, u, v)
     return (np.nan, np.nan, np.nan)
 
 
 @njit(cache=True)
-def bearing_axis_commit(kind, p, s, u, v, tau=0.0):
+def bearing_axis_commit(kind, p, s, u, v):
     """:func:`axis_commit` of bearing kind ``kind``."""
     if kind == 0:
         _axis_commit_0(p, s, u, v)
@@ -91,7 +90,7 @@ def bearing_axis_commit(kind, p, s, u, v, tau=0.0):
         _axis_commit_1(p, s, u, v)
         return
     if kind == 2:
-        _axis_commit_2(p, s, u, v, tau)
+        _axis_commit_2(p, s, u, v)
         return
 
 
@@ -122,7 +121,7 @@ def bearing_plan_trial(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k
 
 
 @njit(cache=True)
-def bearing_plan_commit(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau=0.0):
+def bearing_plan_commit(kind, p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau):
     """:func:`plan_commit` of bearing kind ``kind``."""
     if kind == 0:
         _plan_commit_0(p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau)
@@ -169,14 +168,6 @@ def bearing_plan_turn_direction(kind, s):
     if kind == 2:
         return _plan_turn_direction_2(s)
     return (0.0, 0.0)
-
-
-@njit(cache=True)
-def bearing_axis_path_only(kind, p):
-    """:func:`axis_path_only` of bearing kind ``kind``."""
-    if kind == 2:
-        return _axis_path_only_2(p)
-    return False
 
 
 @njit(cache=True)

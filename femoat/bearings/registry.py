@@ -36,8 +36,8 @@ below it are the story materials)."""
 
 KERNELS = {
     # name in the dispatcher: (name in the kind's module, arguments after ``kind``, returns)
-    "bearing_axis_trial": ("axis_trial", "p, s, u, v, tau", "(np.nan, np.nan, np.nan)"),
-    "bearing_axis_commit": ("axis_commit", "p, s, u, v, tau", None),
+    "bearing_axis_trial": ("axis_trial", "p, s, u, v", "(np.nan, np.nan, np.nan)"),
+    "bearing_axis_commit": ("axis_commit", "p, s, u, v", None),
     "bearing_axis_energy": ("axis_energy", "p, s", "np.nan"),
     "bearing_plan_trial": ("plan_trial", "p, s, u0x, u0y, v0x, v0y, ux, uy, vx, vy, tau, f, k, c",
                            None),
@@ -47,21 +47,6 @@ KERNELS = {
     "bearing_plan_turn_direction": ("plan_turn_direction", "s", "(0.0, 0.0)"),
 }
 """The kernels every kind provides, and what the dispatcher returns for an unknown kind."""
-
-OPTIONAL_KERNELS = {
-    "bearing_axis_path_only": ("axis_path_only", "p", "False"),
-}
-"""Kernels a kind may provide, and what the dispatcher returns for a kind without one:
-``axis_path_only(p)``, whether a bearing of params ``p`` is a return over each step whose
-tangent depends on the step's duration (velocity-dependent friction), so that the one-axis
-kink search, which compares tangents along the step, skips it."""
-
-OPTIONAL_ARGUMENTS = {"tau": "0.0"}
-"""Trailing arguments a kind's kernel may leave out, with the dispatcher's default: ``tau`` [s],
-the duration of the step from the committed state to the trial (0 at the committed state
-itself), which only a kind whose one-axis friction reads a rate over the step needs (the triple
-pendulum's velocity-dependent friction); the dispatcher passes it to the kinds whose kernel
-takes it."""
 
 RATE_KERNELS = {
     "bearing_plan_rate_active": ("plan_rate_active", "p, s, vx, vy", "False"),
@@ -196,19 +181,15 @@ def has_rate_form(name):
     return hasattr(importlib.import_module(name), RATE_KERNELS["bearing_plan_rate"][0])
 
 
-def path_only(name, params):
-    """Whether a bearing of kind module ``name`` and ``params`` takes Newmark's step only, in
-    1D and in plan (the kind's optional ``path_only(params)``: its friction a return over each
-    step, e.g. the triple pendulum's velocity-dependent friction); False for a kind without
-    one."""
-    fn = getattr(importlib.import_module(name), "path_only", None)
-    return False if fn is None else bool(fn(params))
-
-
 def rate_form_covers(name, params):
-    """Whether the kind module ``name``'s rate form covers a bearing of ``params``: the kind
-    declares one, and the bearing is not :func:`path_only`."""
-    return has_rate_form(name) and not path_only(name, params)
+    """Whether the kind module ``name``'s rate form covers a bearing of ``params`` (its
+    optional ``rate_form_covers(params)``; a kind without one covers every bearing it declares
+    the rate form for). False for a kind without a rate form."""
+    mod = importlib.import_module(name)
+    if not has_rate_form(name):
+        return False
+    covers = getattr(mod, "rate_form_covers", None)
+    return True if covers is None else bool(covers(params))
 
 
 def generate(names=None, compiled=None):
@@ -235,8 +216,6 @@ def generate(names=None, compiled=None):
     for k, name in enumerate(names):
         out.append(f"from {name} import (")
         out += [f"    {v[0]} as _{v[0]}_{k}," for v in KERNELS.values()]
-        out += [f"    {v[0]} as _{v[0]}_{k}," for v in OPTIONAL_KERNELS.values()
-                if hasattr(importlib.import_module(name), v[0])]
         if rated[k]:
             out += [f"    {v[0]} as _{v[0]}_{k}," for v in RATE_KERNELS.values()
                     if hasattr(importlib.import_module(name), v[0])]
@@ -246,39 +225,23 @@ def generate(names=None, compiled=None):
     listed = "".join(f"\n    {name!r}," for name in names)
     out += ['', f"KINDS = ({listed}\n)", '"""The kinds this dispatcher was generated for."""', '',
             '_registry.check_dispatcher(KINDS)']
-    for fn, (own, args, missing) in (*KERNELS.items(), *OPTIONAL_KERNELS.items(),
-                                     *RATE_KERNELS.items()):
-        names_ = [a.strip() for a in args.split(",")]
-        signature = ", ".join(f"{a}={OPTIONAL_ARGUMENTS[a]}" if a in OPTIONAL_ARGUMENTS and
-                              j == len(names_) - 1 else a for j, a in enumerate(names_))
-        out += ['', '', '@njit(cache=True)', f"def {fn}(kind, {signature}):",
+    for fn, (own, args, missing) in (*KERNELS.items(), *RATE_KERNELS.items()):
+        out += ['', '', '@njit(cache=True)', f"def {fn}(kind, {args}):",
                 f'    """:func:`{own}` of bearing kind ``kind``."""']
         for k in branches:
             if fn in RATE_KERNELS and not rated[k]:
-                continue
-            if fn in OPTIONAL_KERNELS and not hasattr(importlib.import_module(names[k]), own):
                 continue
             if fn in RATE_DEFAULTS and not hasattr(importlib.import_module(names[k]), own):
                 first, last = RATE_DEFAULTS[fn]
                 out += [f"    if kind == {k}:"] + ([f"        {first.format(k=k)}"] if first else []) \
                     + [f"        {last.format(k=k)}"]
                 continue
-            call = f"_{own}_{k}({_arguments(names[k], own, names_)})"
+            call = f"_{own}_{k}({args})"
             out += [f"    if kind == {k}:", f"        return {call}" if missing else
                     f"        {call}\n        return"]
         if missing:
             out.append(f"    return {missing}")
     return "\n".join(out) + "\n"
-
-
-def _arguments(name, own, arguments):
-    """The arguments the dispatcher passes to kernel ``own`` of kind module ``name``: all of
-    ``arguments`` but the trailing :data:`OPTIONAL_ARGUMENTS` the kernel does not take."""
-    fn = getattr(importlib.import_module(name), own)
-    taken = getattr(fn, "py_func", fn).__code__.co_argcount
-    while len(arguments) > taken and arguments[-1] in OPTIONAL_ARGUMENTS:
-        arguments = arguments[:-1]
-    return ", ".join(arguments)
 
 
 def write():

@@ -194,8 +194,11 @@ slides faster than at rest. The step is first order in τ (a steady orbit's forc
 first order to its closed form: tested); OpenSees' element does the same step but reads each
 friction law at its element's whole deformation rate |Δd_i|/Δt from its previous Newton
 iteration. It needs the step's duration, which the plan kernels get and the one-axis kernels
-do not: a velocity-dependent bearing runs in plan (a 1D building refuses it), on Newmark's step
-(the rate form covers constant friction only: :func:`path_only`; ark5 refuses it).
+do not: a velocity-dependent bearing runs in plan, on Newmark's step (the rate form covers
+constant friction only: :func:`rate_form_covers`; ark5 refuses it); a 1D model of it is refused
+where it is packed. (Passing the duration to the one-axis kernels means one more argument of
+the material kernels that every element calls, which slowed every plan run: benchmarks/README.md,
+issue 28's velocity-dependent friction.)
 """
 
 from dataclasses import dataclass
@@ -864,19 +867,17 @@ def plan_rate_commit(p, s, ux, uy, vx, vy, z):
 
 
 @njit(cache=True)
-def axis_trial(p, s, u, v, tau=0.0):
-    """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at the trial (u [in], v [in/s]) reached
-    in ``tau`` [s] from the committed state ``s`` (not modified): the plan element's x row at
-    (u, 0) (its chord: a straight step)."""
-    r = _series(p, s, 0, u, 0.0, 0, s, tau)
+def axis_trial(p, s, u, v):
+    """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at the trial (u [in], v [in/s]) from the
+    committed state ``s`` (not modified): the plan element's x row at (u, 0)."""
+    r = series_solve(p, s, u, 0.0)
     return r[0], r[2], 0.0
 
 
 @njit(cache=True)
-def axis_commit(p, s, u, v, tau=0.0):
-    """Advance the committed state ``s`` in place to the converged (u, v) reached in ``tau``
-    [s] (plan at (u, 0))."""
-    _store(s, 0, _series(p, s, 0, u, 0.0, 0, s, tau))
+def axis_commit(p, s, u, v):
+    """Advance the committed state ``s`` in place to the converged (u, v) (plan at (u, 0))."""
+    _store(s, 0, series_solve(p, s, u, 0.0))
 
 
 @njit(cache=True)
@@ -920,7 +921,8 @@ class TripleFrictionPendulum(BearingFaces):
     a : float
         Rate parameter of the velocity dependence [s/in], > 0 with the μ_fast; 0 without.
 
-    Velocity-dependent friction runs on Newmark's step, in 1D and in plan (module docstring).
+    Velocity-dependent friction runs in plan, on Newmark's step (module docstring); a 1D
+    model of it is refused (its one-axis kernels are not given the step's duration).
 
     The defaults are a typical bearing: inner L1 = 12 in and outer L2 = L3 = 88 in (the
     isolated period of the large-displacement regime III, 2π·sqrt((L2 + L3)/g), is 4.2 s),
@@ -1061,6 +1063,12 @@ class TripleFrictionPendulum(BearingFaces):
         return (0.5, self.L2 / (self.L2 - self.L1), self.L3 / (self.L3 - self.L1))
 
     @property
+    def one_axis_applies(self) -> bool:
+        """Whether a 1D building can stand on this bearing (constant friction only: the one-axis
+        kernels are not given the step's duration that velocity-dependent friction reads)."""
+        return not self.velocity_dependent
+
+    @property
     def gaps(self) -> tuple:
         """The series elements' gaps g_i [in] (their restrainers; module docstring)."""
         m = min(self.d2 / self.L2, self.d3 / self.L3)
@@ -1105,19 +1113,10 @@ class TripleFrictionPendulum(BearingFaces):
         return np.array(p, dtype=np.float64)
 
 
-@njit(cache=True)
-def axis_path_only(p):
-    """Whether a bearing of params ``p`` has velocity-dependent friction: a return over each
-    step, whose tangent depends on the step's duration (the one-axis kink search skips it)."""
-    return p[_RATE + 1] > 0.0
-
-
-def path_only(params):
-    """Whether a bearing of these params has velocity-dependent friction, a return over each
-    step (module docstring): its runs take Newmark's step, in 1D and in plan (an explicit
-    stage's return over its offset, or ark5's rate form, which covers constant friction only,
-    would not suit it)."""
-    return bool(params[_RATE + 1] > 0.0)
+def rate_form_covers(params):
+    """Whether the rate form (the coupled-friction step's) covers a bearing of these params:
+    constant friction only; velocity-dependent friction follows each step's path (Newmark)."""
+    return not params[_RATE + 1] > 0.0
 
 
 AXIS_CLASS = TripleFrictionPendulum

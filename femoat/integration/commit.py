@@ -47,7 +47,7 @@ def accept(hh, ag1, landing, explicit_step, model, state, settings, work):
         state.el_W[e] += 0.5 * (el_f[e] + w_ef[e]) * (w_ed[e] - el_d[e])
         i, j = el_i[e], el_j[e]
         dv = work.v[i] - (work.v[j] if j >= 0 else 0.0)
-        material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv, hh)
+        material_commit(model.el_code[e], model.el_P[e], state.el_S[e], w_ed[e], dv)
         el_f[e] = w_ef[e]
         el_d[e] = w_ed[e]
     b_f, w_bf, b_dofs = state.b_f, work.bf, model.b_dofs

@@ -19,7 +19,7 @@ def initial_element_energies(el_i, el_j, el_code, el_P, el_S, u, s_tmp, out,
         d = u[i] - (u[j] if j >= 0 else 0.0)
         for k in range(s_tmp.size):
             s_tmp[k] = el_S[e, k]
-        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0, 0.0)
+        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0)
         out[e] = material_recoverable_energy(el_code[e], el_P[e], s_tmp)
     for e in range(b_kind.size):
         ix, iy = b_dofs[e, 0], b_dofs[e, 1]

@@ -143,7 +143,7 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
         i, j = el_i[e], el_j[e]
         d = u[i] - (u[j] if j >= 0 else 0.0)
         dv = v[i] - (v[j] if j >= 0 else 0.0)
-        f, kf, cf = material_trial(el_code[e], el_P[e], el_S[e], d, dv, tau)
+        f, kf, cf = material_trial(el_code[e], el_P[e], el_S[e], d, dv)
         el_f[e] = f
         el_d[e] = d
         F[i] += f

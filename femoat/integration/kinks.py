@@ -16,7 +16,7 @@ from femoat.bearings.dispatch import (
 from femoat.compilation.jit import njit
 from femoat.integration.bundles import rate_scratch
 from femoat.integration.interpolants import crossing, hermite
-from femoat.structure.materials.kernels import material_commit, material_path_only, material_trial
+from femoat.structure.materials.kernels import material_commit, material_trial
 
 
 KINK_RATIO = 0.5
@@ -240,8 +240,6 @@ def find_kink(hh, model, state, work, fine):
         _, k1, _ = material_trial(el_code[e], el_P[e], el_S[e], d1, dv1)
         if abs(k1 - k0) <= KINK_RATIO * max(abs(k0), abs(k1)):
             continue
-        if material_path_only(el_code[e], el_P[e]):
-            continue  # (a tangent that depends on the step; its stick-slip is smooth)
         for _ in range(KINK_BISECTIONS):
             mid = 0.5 * (lo + hi)
             d, dth = hermite(mid, hh, d0, dv0, d1, dv1)
@@ -286,12 +284,12 @@ def find_turn(hh, model, state, work, fine):
         if th <= KINK_RESOLUTION or th >= 1.0:
             continue
         d, _ = hermite(th, hh, state.el_d[e], dv0, work.ed[e], dv1)
-        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0, th * hh)
+        _, k_on, _ = material_trial(el_code[e], el_P[e], el_S[e], d, 0.0)
         for k in range(s_tmp.size):
             s_tmp[k] = el_S[e, k]
-        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0, th * hh)
+        material_commit(el_code[e], el_P[e], s_tmp, d, 0.0)
         back = d - TURN_PROBE * (abs(d) + abs(state.el_d[e]) + 1e-6) * (1.0 if dv0 > 0.0 else -1.0)
-        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0, 0.0)
+        _, k_back, _ = material_trial(el_code[e], el_P[e], s_tmp, back, 0.0)
         if abs(k_back - k_on) <= KINK_RATIO * max(abs(k_on), abs(k_back)):
             continue
         th = min(1.0, th + KINK_RESOLUTION)

@@ -19,7 +19,6 @@ from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
 from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
-from femoat.structure.materials.codes import BEARING
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
@@ -238,7 +237,6 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
     method = methods.module(integ.method)
     if packed.bearing_dofs.size:
         _check_plan_method(integ.method, packed)
-    _check_path_only(integ.method, packed)
     return Settings(
         method=methods.CODES[integ.method], quintic_peaks=bool(method.QUINTIC_DENSE),
         beta=float(integ.beta), gamma=float(integ.gamma), alpha=float(integ.alpha),
@@ -276,24 +274,15 @@ def _check_plan_method(name, packed):
             f"method = 'ark5' on plan bearings without a rate form ({kinds}): their friction "
             "state would follow a path guessed between stage values (first order in the step). "
             "Use Integrator(method='newmark'), the default of a plan run on these bearings.")
-
-
-def _check_path_only(name, packed):
-    """Refuse any method but Newmark's on a bearing that takes it only (1D or plan:
-    :func:`femoat.bearings.registry.path_only`)."""
-    if name == "newmark":
-        return
-    rows = list(zip(packed.bearing_kind, packed.bearing_P))
-    rows += [(code - BEARING, p) for code, p in zip(packed.el_code, packed.el_P)
-             if code >= BEARING]
-    for k, p in rows:
-        kind = bearing_registry.kinds()[k]
-        if bearing_registry.path_only(kind, p):
-            raise ValueError(
-                f"method = {name!r} on a bearing with velocity-dependent friction ({kind}): its "
-                "friction is a backward-Euler return over each step, which an explicit stage "
-                "(or ark5's rate form) would take over the stage's offset, first order in the "
-                "step. Use Integrator(method='newmark'), the default of a run on this bearing.")
+    if name == "ark5":
+        for k, p in zip(packed.bearing_kind, packed.bearing_P):
+            kind = bearing_registry.kinds()[k]
+            if not bearing_registry.rate_form_covers(kind, p):
+                raise ValueError(
+                    f"method = 'ark5' on a bearing its kind's rate form does not cover ({kind}: "
+                    "a triple pendulum's velocity-dependent friction): its friction would be "
+                    "a backward-Euler return over each stage (first order in the step). Use "
+                    "Integrator(method='newmark'), the default of a plan run on this bearing.")
 
 
 def _bundles(packed, ag, u, v, settings):

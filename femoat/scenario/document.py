@@ -9,7 +9,7 @@ from femoat.integration.methods import EXPLICIT_PAIRS
 from femoat.integration.settings import Integrator
 from femoat.plan.model import PlanModel
 from femoat.plan.moat import SIDES
-from femoat.run import PLAN_METHOD, axis_integrator, plan_method
+from femoat.run import PLAN_METHOD, plan_method
 from femoat.scenario import building, moat, motion, pair, solver, walls
 from femoat.scenario.reading import check_keys, flag, read_toml, subtable, text
 from femoat.structure.pounding import PoundingModel
@@ -127,13 +127,8 @@ def model_from_dict(d, base_dir=Path(".")):
 
 def integrator_for(model, table):
     """The Integrator of a ``[solver]`` table for ``model``: a plan model's method defaults to
-    a plan run's own (:func:`femoat.run.plan_method`), a 1D model's to the Integrator's (or
-    Newmark on a bearing that takes it only: :func:`femoat.run.axis_integrator`)."""
+    a plan run's own (:func:`femoat.run.plan_method`), a 1D model's to the Integrator's."""
     table = dict(table)
-    if not isinstance(model, PlanModel) and "method" not in table:
-        method = axis_integrator(model).method
-        if method != Integrator().method:
-            table["method"] = method
     if isinstance(model, PlanModel):
         default = plan_method(model)
         table.setdefault("method", default)

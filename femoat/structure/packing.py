@@ -60,6 +60,13 @@ def pack(building, stories, layout, walls, bearing=None):
             _add_spring(K, i, j, geometric[k])
             elements.append((i, j, a, mat, Role(STORY, k + 1)))
     iso = b.isolator
+    if iso is not None and bearing is None and not getattr(iso, "one_axis_applies", True):
+        raise ValueError(
+            f"isolator: this {type(iso).__name__} has velocity-dependent friction (mu1_fast, "
+            "mu2_fast, mu3_fast), which femoat models in plan only (each surface's friction "
+            "reads its own sliding rate over the step, which the one-axis kernels are not "
+            "given). Run it on a plan building (femoat.plan.PlanBuilding; a 1D record as "
+            "RecordPair(record, zeros)), or give the 1D building constant friction (no mu_fast).")
     if iso is not None and bearing is None:
         elements = [(dofs[0, a], -1, a, iso, Role(ISOLATOR)) for a in axes] + elements
     contacts = []

@@ -21,12 +21,7 @@ Nothing here allocates.
 import numpy as np
 
 from femoat.bearings import registry
-from femoat.bearings.dispatch import (
-    bearing_axis_commit,
-    bearing_axis_energy,
-    bearing_axis_path_only,
-    bearing_axis_trial,
-)
+from femoat.bearings.dispatch import bearing_axis_commit, bearing_axis_energy, bearing_axis_trial
 from femoat.bearings.friction_pendulum import axis_commit as fp_axis_commit
 from femoat.bearings.friction_pendulum import axis_trial as fp_axis_trial
 from femoat.compilation.jit import njit
@@ -65,22 +60,20 @@ def param_size(code: int) -> int:
 
 
 @njit(cache=True)
-def _other_bearing_trial(code, p, s, u, v, tau):
+def _other_bearing_trial(code, p, s, u, v):
     """The bearing kinds after the friction pendulum, through the dispatcher."""
-    return bearing_axis_trial(code - BEARING, p, s, u, v, tau)
+    return bearing_axis_trial(code - BEARING, p, s, u, v)
 
 
 @njit(cache=True)
-def _other_bearing_commit(code, p, s, u, v, tau):
+def _other_bearing_commit(code, p, s, u, v):
     """The bearing kinds after the friction pendulum, through the dispatcher."""
-    bearing_axis_commit(code - BEARING, p, s, u, v, tau)
+    bearing_axis_commit(code - BEARING, p, s, u, v)
 
 
 @njit(cache=True)
-def material_trial(code, p, s, u, v, tau=0.0):
-    """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at trial (u [in], v [in/s]), reached
-    from the committed state in ``tau`` [s] (read only by a bearing whose friction reads a rate
-    over the step: the triple pendulum's velocity-dependent friction)."""
+def material_trial(code, p, s, u, v):
+    """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at trial (u [in], v [in/s])."""
     if code == ELASTIC:
         return elastic_trial(p, s, u)
     if code == BILINEAR:
@@ -90,14 +83,13 @@ def material_trial(code, p, s, u, v, tau=0.0):
     if code == BEARING:  # the single friction pendulum, kind 0: called directly
         return fp_axis_trial(p, s, u, v)
     if code > BEARING:
-        return _other_bearing_trial(code, p, s, u, v, tau)
+        return _other_bearing_trial(code, p, s, u, v)
     return np.nan, np.nan, np.nan
 
 
 @njit(cache=True)
-def material_commit(code, p, s, u, v, tau=0.0):
-    """Advance the committed state ``s`` in place to the converged (u, v), reached in ``tau``
-    [s] (as :func:`material_trial`)."""
+def material_commit(code, p, s, u, v):
+    """Advance the committed state ``s`` in place to the converged (u, v)."""
     if code == ELASTIC:
         elastic_commit(p, s, u)
     elif code == BILINEAR:
@@ -107,17 +99,7 @@ def material_commit(code, p, s, u, v, tau=0.0):
     elif code == BEARING:  # the single friction pendulum, kind 0: called directly
         fp_axis_commit(p, s, u, v)
     elif code > BEARING:
-        _other_bearing_commit(code, p, s, u, v, tau)
-
-
-@njit(cache=True)
-def material_path_only(code, p):
-    """Whether material ``code`` with params ``p`` is a return over each step whose tangent
-    depends on the step's duration (a bearing's velocity-dependent friction): the kink
-    search, which compares tangents along a step, skips it."""
-    if code > BEARING:
-        return bearing_axis_path_only(code - BEARING, p)
-    return False
+        _other_bearing_commit(code, p, s, u, v)
 
 
 @njit(cache=True)
