@@ -2,7 +2,7 @@
 backward-Euler return on a steady orbit (against the closed form, and OpenSees' element), and
 the cost and accuracy of a plan run on it, beside the constant-friction bearing.
 
-    python benchmarks/tfp_velocity.py [--no-opensees]
+    python benchmarks/tfp_velocity.py [--no-opensees] [--twin-run]
 
 Bearing: ``TripleFrictionPendulum(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)`` (the
 defaults' μ as μ_slow). Prints:
@@ -15,7 +15,10 @@ defaults' μ as μ_slow). Prints:
 * the paper building in plan on the bearing in the square concrete moat (law H), the first 8 s
   of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°: Newmark at its
   default rtol and at 1e-6, 1e-7 against 1e-8: steps, loop CPU, the worst peak's relative
-  error; the constant-friction bearing at its default for scale.
+  error; the constant-friction bearing at its default for scale;
+* ``--twin-run``: that plan run's OpenSees twin (``femoat.opensees.plan``, tol 1e-6; at 1e-8 it
+  stops converging) at 0.2, 0.1 and 0.05 ms: its worst peak against femoat at rtol 1e-8 (about
+  a minute of OpenSees).
 """
 
 import argparse
@@ -160,6 +163,32 @@ def _peaks(r, plan):
                      pk["peak_impact_force_neg"], *pk["peak_drift"]])
 
 
+def _plan_pair():
+    m8 = _first(paper_motion(), 8.0)
+    return RecordPair(m8, GroundMotion(-0.6 * m8.accel_g[::-1], m8.dt, name="y"), angle=30.0)
+
+
+def twin_run_table():
+    from femoat.opensees.plan import opensees_plan_run
+
+    pair = _plan_pair()
+    model = PlanModel(building=PlanBuilding(isolator=BEARING))
+    ref = _peaks(run(model, pair, integrator=Integrator(method="newmark", rtol=1e-8)), True)
+    sides = [w.side for w in model.walls]
+    order = [("+x", "-x", "+y", "-y").index(s) for s in sides]
+    print("\nthe plan run's OpenSees twin (tol 1e-6) against femoat at rtol 1e-8")
+    for dt in (2e-4, 1e-4, 5e-5):
+        t = time.time()
+        tw = opensees_plan_run(model, pair, dt, tol=1e-6)["peaks"]
+        forces = np.zeros(4)
+        forces[order] = tw["impact_force"]
+        d = np.asarray(tw["drift"])
+        twin = np.array([tw["plan_base_displacement"], *forces, *d[:, 0], *d[:, 1]])
+        err = np.max(np.abs(twin / ref - 1.0))
+        print(f"dt {1e3 * dt:.2f} ms: worst peak {err:.3f}, impacts {list(tw['impacts'])}, "
+              f"{time.time() - t:.0f} s", flush=True)
+
+
 def runs_table():
     m = paper_motion()
     m8 = _first(m, 8.0)
@@ -192,9 +221,12 @@ def runs_table():
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-opensees", action="store_true")
+    ap.add_argument("--twin-run", action="store_true")
     args = ap.parse_args(argv)
     orbit_table(not args.no_opensees)
     runs_table()
+    if args.twin_run:
+        twin_run_table()
 
 
 if __name__ == "__main__":

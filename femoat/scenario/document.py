@@ -134,10 +134,11 @@ def integrator_for(model, table):
         table.setdefault("method", default)
         if table["method"] in EXPLICIT_PAIRS or (table["method"] == "ark5" and default != "ark5"):
             raise ValueError(
-                f"[solver] method = {table['method']!r}: on this plan isolator its explicit "
-                "stages would read the friction direction from a path between stage values, "
-                f"only first order on a curved orbit (docs/coupled_friction.md); write method = "
-                f"\"{default}\" in [solver] or leave method out (this plan file's default).")
+                f"[solver] method = {table['method']!r}: on this plan isolator its "
+                "stages would read the friction from a path between stage values (or, for "
+                "velocity-dependent friction, a return over each stage's offset), only first "
+                f"order in the step (docs/coupled_friction.md); write method = \"{default}\" "
+                "in [solver] or leave method out (this plan file's default).")
     return solver.solver_from_dict(table)
 
 def scenario_from_dict(d, base_dir=Path(".")):
