@@ -84,51 +84,14 @@ def closed_form():
 
 
 def opensees_forces(path, dt):
-    """OpenSees' element on the imposed orbit, one transient step of dt a point (None if
-    openseespy is missing or fails)."""
+    """OpenSees' element on the imposed orbit, one transient step of dt a point: the force
+    magnitudes (None if openseespy is missing or OpenSees fails)."""
+    from femoat.opensees.bearing_orbit import orbit_forces
+
     try:
-        import openseespy.opensees as ops
+        return np.hypot(*orbit_forces(BEARING, path, dt).T)
     except (ImportError, RuntimeError):
         return None
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.mass(2, 1e-9, 1e-9, 1e-9, 0.0, 0.0, 0.0)
-    for name, *args in tfp.opensees_plan_element(BEARING, 1, 1, 2, 1)[0]:
-        getattr(ops, name)(*args)
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -BEARING.W, 0.0, 0.0, 0.0)
-    for name, *args in (("constraints", "Plain"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 20),
-                        ("algorithm", "Newton"), ("integrator", "LoadControl", 1.0),
-                        ("analysis", "Static")):
-        getattr(ops, name)(*args)
-    ops.analyze(1)
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
-    for dof in (1, 2):
-        values = [0.0, *map(float, path[:, dof - 1]), float(path[-1, dof - 1])]
-        ops.timeSeries("Path", 10 + dof, "-dt", dt, "-values", *values)
-        ops.pattern("Plain", 10 + dof, 10 + dof)
-        ops.sp(2, dof, 1.0)
-    for name, *args in (("constraints", "Transformation"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 50),
-                        ("algorithm", "Newton"), ("integrator", "Newmark", 0.5, 0.25),
-                        ("analysis", "Transient")):
-        getattr(ops, name)(*args)
-    out = np.zeros(len(path))
-    for i in range(len(path)):
-        if ops.analyze(1, dt) != 0:
-            ops.wipe()
-            return None
-        force = ops.eleResponse(1, "globalForce")
-        out[i] = math.hypot(force[6], force[7])
-    ops.wipe()
-    return out
 
 
 def orbit_table(with_opensees):

@@ -620,47 +620,13 @@ def test_a_path_is_pieces_of_series_solves_in_the_scratch_slots():
 def opensees_forces(b, path):
     """OpenSees' TripleFrictionPendulum (built by tfp.opensees_plan_element) between a fixed
     node and a node loaded by −W in z, its x and y displacements imposed along ``path`` (n, 2)
-    [in] one static step per point: the element's shear forces (n, 2) [kip]."""
+    [in] one static step per point: the element's shear forces (n, 2) [kip]
+    (``femoat.opensees.bearing_orbit``)."""
     from conftest import opensees_or_skip
+    from femoat.opensees.bearing_orbit import orbit_forces
 
-    ops = opensees_or_skip()
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    commands, _ = tfp.opensees_plan_element(b, 1, 1, 2, 1)
-    for name, *args in commands:
-        getattr(ops, name)(*args)
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -b.W, 0.0, 0.0, 0.0)  # the axial load N = W the element needs
-    for name, *args in (("constraints", "Plain"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 20),
-                        ("algorithm", "Newton"), ("integrator", "LoadControl", 1.0),
-                        ("analysis", "Static")):
-        getattr(ops, name)(*args)
-    assert ops.analyze(1) == 0
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
-    for dof in (1, 2):  # the imposed displacements: one Path series per direction
-        values = [0.0, *map(float, path[:, dof - 1]), float(path[-1, dof - 1])]
-        ops.timeSeries("Path", 10 + dof, "-dt", 1.0, "-values", *values)
-        ops.pattern("Plain", 10 + dof, 10 + dof)
-        ops.sp(2, dof, 1.0)
-    for name, *args in (("constraints", "Transformation"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 20),
-                        ("algorithm", "Linear"), ("integrator", "LoadControl", 1.0),
-                        ("analysis", "Static")):
-        getattr(ops, name)(*args)
-    out = np.zeros((len(path), 2))
-    for i in range(len(path)):
-        assert ops.analyze(1) == 0
-        force = ops.eleResponse(1, "globalForce")
-        out[i] = force[6], force[7]
-    ops.wipe()
-    return out
+    opensees_or_skip()
+    return orbit_forces(b, path)
 
 
 def smoothstep(x):

@@ -304,49 +304,13 @@ def test_scenario_and_suite_files_take_the_velocity_dependence():
 def opensees_orbit_forces(b, path, dt):
     """OpenSees' TripleFrictionPendulum (tfp.opensees_plan_element: VelDependent friction
     models) under ``path`` (n, 2) [in] imposed one transient step of ``dt`` [s] per point (its
-    friction reads |Δd_i|/Δt, the analysis' step), N = W from a static step first: the shear
-    force magnitudes (n,) [kip]."""
+    friction reads |Δd_i|/Δt, the analysis' step), N = W from a static step first
+    (``femoat.opensees.bearing_orbit``): the shear force magnitudes (n,) [kip]."""
     from conftest import opensees_or_skip
+    from femoat.opensees.bearing_orbit import orbit_forces
 
-    ops = opensees_or_skip()
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.mass(2, 1e-9, 1e-9, 1e-9, 0.0, 0.0, 0.0)  # (a transient analysis needs a mass)
-    commands, _ = tfp.opensees_plan_element(b, 1, 1, 2, 1)
-    for name, *args in commands:
-        getattr(ops, name)(*args)
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -b.W, 0.0, 0.0, 0.0)
-    for name, *args in (("constraints", "Plain"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 20),
-                        ("algorithm", "Newton"), ("integrator", "LoadControl", 1.0),
-                        ("analysis", "Static")):
-        getattr(ops, name)(*args)
-    assert ops.analyze(1) == 0
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
-    for dof in (1, 2):
-        values = [0.0, *map(float, path[:, dof - 1]), float(path[-1, dof - 1])]
-        ops.timeSeries("Path", 10 + dof, "-dt", dt, "-values", *values)
-        ops.pattern("Plain", 10 + dof, 10 + dof)
-        ops.sp(2, dof, 1.0)
-    for name, *args in (("constraints", "Transformation"), ("numberer", "Plain"),
-                        ("system", "BandGeneral"), ("test", "NormDispIncr", 1e-12, 50),
-                        ("algorithm", "Newton"), ("integrator", "Newmark", 0.5, 0.25),
-                        ("analysis", "Transient")):
-        getattr(ops, name)(*args)
-    out = np.zeros(len(path))
-    for i in range(len(path)):
-        assert ops.analyze(1, dt) == 0
-        force = ops.eleResponse(1, "globalForce")
-        out[i] = math.hypot(force[6], force[7])
-    ops.wipe()
-    return out
+    opensees_or_skip()
+    return np.hypot(*orbit_forces(b, path, dt).T)
 
 
 @pytest.mark.opensees
