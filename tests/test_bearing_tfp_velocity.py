@@ -279,6 +279,7 @@ def test_scenario_and_suite_files_take_the_velocity_dependence():
     # a suite may vary mu2_fast like any isolator field.
     from femoat.run import packed_model, plan_method
     from femoat.scenario import model_from_dict
+    from femoat.scenario.document import integrator_for
     from femoat.suite.model import build_variation
     from femoat.suite.variations import allowed_keys, apply, variations_from_dict
 
@@ -287,6 +288,9 @@ def test_scenario_and_suite_files_take_the_velocity_dependence():
     assert plan.building.isolator.velocity_dependent
     assert plan.building.isolator.rate_factors == (0.5, 88.0 / 76.0, 88.0 / 76.0)
     assert plan_method(plan) == "newmark"
+    assert integrator_for(plan, {}).method == "newmark"  # a [solver] table without a method
+    with pytest.raises(ValueError, match=r"^\[solver\] method = 'ark5'.*method = \"newmark\""):
+        integrator_for(plan, {"method": "ark5"})
     one_axis = model_from_dict({"building": {"isolator": iso}})
     with pytest.raises(ValueError, match=r"velocity-dependent friction .*no mu_fast"):
         packed_model(one_axis)
