@@ -275,8 +275,9 @@ def _element(p, i, s, o, dx, dy, carried, Z, tau):
         energy = q * (zx * dx + zy * dy)
         sliding = 1
     elif t > 1.0 and p[_RATE + 2 * i + 1] > 0.0:  # sliding, velocity-dependent friction
+        zn = np.sqrt(s[o + 6 + 2 * i] ** 2 + s[o + 7 + 2 * i] ** 2)
         zx, zy, kxx, kxy, kyy, energy = _rate_return(
-            q, p[_RATE + 2 * i], p[_RATE + 2 * i + 1], uyi, tx, ty, t, tau)
+            q, p[_RATE + 2 * i], p[_RATE + 2 * i + 1], uyi, tx, ty, t, tau, zn)
         kxx += kr
         kyy += kr
         sliding = 1
@@ -320,7 +321,7 @@ converges monotonically from below, quadratically)."""
 
 
 @njit(cache=True)
-def _rate_return(q, qf, b, uyi, tx, ty, t, tau):
+def _rate_return(q, qf, b, uyi, tx, ty, t, tau, zn):
     """The friction of a sliding element with velocity-dependent friction (module docstring,
     "Velocity-dependent friction"): the backward-Euler return over ``tau`` [s] from the elastic
     trial q·(tx, ty) (|t| = ``t`` > 1), q = μ_slow·W [kip], ``qf`` = μ_fast·W [kip], ``b`` =
@@ -330,7 +331,9 @@ def _rate_return(q, qf, b, uyi, tx, ty, t, tau):
     (the friction force over q, |z| = q(w)/q ≥ 1), its tangent ∂(q·z)/∂d (kxx, kxy, kyy)
     [kip/in] and its incremental potential |Q|²/(2·k_e) + τ·D(w), D(w) = ∫₀ʷ q(s) ds [kip·in],
     whose gradient in d is the force (so the series solve's line search holds). ``tau`` ≤ 0
-    (the committed state itself): elastic up to qf, then qf."""
+    (the committed state itself): elastic up to qf, then qf. ``zn`` = |z| committed: Newton
+    starts from the committed slip rate (q(w_n) = q·zn) when the root lies beyond it, else from
+    0 (from the left of the root either way: it converges monotonically)."""
     ke = q / uyi
     nx, ny = tx / t, ty / t
     qt = q * t
@@ -346,6 +349,12 @@ def _rate_return(q, qf, b, uyi, tx, ty, t, tau):
     w = 0.0
     qw = q
     slope = b * drop
+    if zn > 1.0 and q * zn < qf:  # the committed slip rate, if the root lies beyond it
+        wn = -np.log((qf - q * zn) / drop) / b
+        decay = np.exp(-b * wn)
+        qn = qf - drop * decay
+        if qt - qn - ktau * wn > 0.0:
+            w, qw, slope = wn, qn, b * drop * decay
     for _ in range(RATE_ITERATIONS):
         # g(w) = q·t − q(w) − k_e·τ·w is convex and decreasing: Newton from w = 0 stays below
         # the root and rises to it
