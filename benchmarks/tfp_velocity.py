@@ -2,7 +2,7 @@
 backward-Euler return on a steady orbit (against the closed form, and OpenSees' element), and
 the cost and accuracy of a plan run on it, beside the constant-friction bearing.
 
-    python benchmarks/tfp_velocity.py [--no-opensees] [--twin-run]
+    python benchmarks/tfp_velocity.py [--no-opensees] [--twin-run] [--suite FOLDER]
 
 Bearing: ``TripleFrictionPendulum(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)`` (the
 defaults' μ as μ_slow). Prints:
@@ -18,7 +18,14 @@ defaults' μ as μ_slow). Prints:
   error; the constant-friction bearing at its default for scale;
 * ``--twin-run``: that plan run's OpenSees twin (``femoat.opensees.plan``, tol 1e-6; at 1e-8 it
   stops converging) at 0.2, 0.1 and 0.05 ms: its worst peak against femoat at rtol 1e-8 (about
-  a minute of OpenSees).
+  a minute of OpenSees);
+* ``--suite FOLDER``: does the velocity dependence matter for pounding? The isolators study's
+  plan suite (``femoat.studies.isolators``: the 22 far-field pairs at the MCE, 0° and 45°, the
+  paper's concrete moat) on its triple pendulum with constant friction against the same bearing
+  with μ_fast = the study's μ, μ_slow = μ/2 and a = 1.5 s/in (about 0.75 s/in at full scale:
+  the model's velocities are half the prototype's), each at its plan default (ark5; Newmark):
+  per isolator, the median peak plan displacement, the probability of pounding, the median
+  peak impact force of the records that pounded, the median peak drift ratio, and the CPU.
 """
 
 import argparse
@@ -181,15 +188,52 @@ def runs_table():
               f"{r.peaks['steps']} steps, {time.process_time() - t:.3f} s")
 
 
+def suite_table(folder):
+    import dataclasses
+
+    from femoat.studies import isolators as study
+    from femoat.studies.suites import run_suites
+    from femoat.suite import load_table
+
+    tfp = study.isolators()[0]["tfp"]
+    fast = {f"mu{i}_fast": getattr(tfp, f"mu{i}") for i in (1, 2, 3)}
+    rate = dataclasses.replace(tfp, mu1=tfp.mu1 / 2, mu2=tfp.mu2 / 2, mu3=tfp.mu3 / 2, a=1.5,
+                               **fast)
+    two_d = study.definitions()["2d"]
+    two_d["variations"] = {"building.isolator": [study.isolator_table(b) for b in (tfp, rate)]}
+    run_suites("tfp velocity", {"2d": two_d}, folder)
+    table = load_table(f"{folder}/2d")
+    rate_runs = table["building.isolator"].map(lambda v: "mu1_fast" in str(v))
+    forces = table[[c for c in table.columns if c.startswith("peak_impact_force_")]]
+    print(f"\n{'TFP friction':>16} {'runs':>5} {'median u [in]':>14} {'P(pounding)':>12} "
+          f"{'median F [kip]':>15} {'median drift':>13} {'CPU [s]':>8}")
+    for label, mask in (("constant", ~rate_runs), ("velocity-dep.", rate_runs)):
+        t = table[mask]
+        pounded = t.groupby("record_id")["pounding"].any()
+        force = forces[mask].astype(float).max(axis=1).groupby(t["record_id"]).max()
+        median_force = float(np.median(force[pounded[pounded].index])) if pounded.any() else 0.0
+        disp = t.groupby("record_id")["peak_base_displacement"].max()
+        drift = t.groupby("record_id")["peak_drift_ratio"].max()
+        cpu = float(t["cpu_seconds"].sum()) if "cpu_seconds" in t else float("nan")
+        print(f"{label:>16} {len(t):5d} {float(np.median(disp)):14.3f} "
+              f"{float(pounded.mean()):12.3f} {median_force:15.2f} "
+              f"{float(np.median(drift)):13.4f} {cpu:8.1f}", flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-opensees", action="store_true")
     ap.add_argument("--twin-run", action="store_true")
+    ap.add_argument("--suite", metavar="FOLDER")
+    ap.add_argument("--suite-only", action="store_true", help="only the --suite table")
     args = ap.parse_args(argv)
-    orbit_table(not args.no_opensees)
-    runs_table()
-    if args.twin_run:
-        twin_run_table()
+    if not args.suite_only:
+        orbit_table(not args.no_opensees)
+        runs_table()
+        if args.twin_run:
+            twin_run_table()
+    if args.suite:
+        suite_table(args.suite)
 
 
 if __name__ == "__main__":
