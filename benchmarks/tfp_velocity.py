@@ -35,7 +35,7 @@ import time
 import numpy as np
 from scipy.optimize import brentq
 
-from femoat.bearings import triple_friction_pendulum as tfp
+from femoat.bearings.orbit import orbit_forces
 from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
 from femoat.ground_motions import GroundMotion, RecordPair
 from femoat.integration import Integrator
@@ -61,17 +61,7 @@ def circle(n, turns=3):
 
 
 def femoat_forces(path, vel, dt):
-    p, s = BEARING.params(), BEARING.initial_state_plan()
-    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
-    u0, v0 = np.zeros(2), np.zeros(2)
-    out = np.zeros(len(path))
-    for j in range(len(path)):
-        args = (*u0, *v0, *path[j], *vel[j], dt)
-        tfp.plan_trial(p, s, *args, f, k, c)
-        tfp.plan_commit(p, s, *args)
-        out[j] = math.hypot(*f)
-        u0, v0 = path[j], vel[j]
-    return out
+    return np.hypot(*orbit_forces(BEARING, path, dt, vel)[0].T)
 
 
 def closed_form():

@@ -15,6 +15,7 @@ import pytest
 from scipy.optimize import brentq
 
 from femoat.bearings import triple_friction_pendulum as tfp
+from femoat.bearings.orbit import orbit_forces
 from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
 
 FAST = dict(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)
@@ -29,19 +30,10 @@ def mu_of(b, i, speed):
 
 def drive(b, path, dt, velocities):
     """Trial then commit the plan kernels along ``path`` (n, 2) [in], one step of ``dt`` [s] per
-    point, the velocities (n, 2) [in/s] at the points (the start at rest at the first point's
-    predecessor, the origin): the force magnitudes (n,) [kip] and the final state."""
-    p, s = b.params(), b.initial_state_plan()
-    f, k, c = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
-    u0, v0 = np.zeros(2), np.zeros(2)
-    out = np.zeros(len(path))
-    for j in range(len(path)):
-        args = (*u0, *v0, *path[j], *velocities[j], dt)
-        tfp.plan_trial(p, s, *args, f, k, c)
-        tfp.plan_commit(p, s, *args)
-        out[j] = math.hypot(*f)
-        u0, v0 = path[j], velocities[j]
-    return out, s
+    point, the velocities (n, 2) [in/s] at the points, from rest at the origin
+    (``femoat.bearings.orbit``): the force magnitudes (n,) [kip] and the final state."""
+    forces, s = orbit_forces(b, path, dt, velocities)
+    return np.hypot(*forces.T), s
 
 
 def orbit(radius, period, n_per_turn, turns):
