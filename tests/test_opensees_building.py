@@ -165,6 +165,24 @@ def test_cli_prints_both_summaries(tmp_path, capsys):
     assert "ops.analyze(" in (tmp_path / "twin.py").read_text()
 
 
+@pytest.mark.opensees
+@needs_opensees
+def test_cli_refuses_a_plan_scenario_naming_the_3d_twin(tmp_path, capsys):
+    # `femoat opensees` compares 1D scenarios; a plan file gets exit 2 and the way to its 3D
+    # twin, not a bare type error.
+    from femoat.commands import opensees as cmd
+
+    (tmp_path / "s.toml").write_text(
+        '[building]\nplan = true\n[moat]\nlaw = "E"\n[motion]\nsource = "fema"\n'
+        'record_set = "farfield"\nrecord_id = 1\n')
+    parser = argparse.ArgumentParser()
+    sub = parser.add_subparsers()
+    cmd.add_parser(sub)
+    assert cmd.run(parser.parse_args(["opensees", str(tmp_path / "s.toml")])) == 2
+    err = capsys.readouterr().err
+    assert "plan scenario" in err and "opensees_plan_run" in err
+
+
 def test_export_refuses_what_has_no_opensees_twin():
     rate = Building(isolator=FrictionPendulum(mu=0.05, mu_fast=0.1, a=1.0))
     with pytest.raises(ValueError, match="mu_fast"):

@@ -54,6 +54,14 @@ def run(args):
         print(f"femoat opensees: error: {exc}", file=sys.stderr)
         return 2
     sc = load_scenario(args.scenario)
+    from femoat.plan.model import PlanModel
+
+    if isinstance(sc.model, PlanModel):
+        print(f"femoat opensees: error: {args.scenario} is a plan scenario ([building] plan = "
+              "true); this command compares 1D scenarios. Run the plan model's 3D twin from "
+              "Python: femoat.opensees.plan.opensees_plan_run(model, pair, dt) (or set plan = "
+              "false for the 1D model).", file=sys.stderr)
+        return 2
     from femoat.startup.bearing_kinds import select_for
 
     select_for([sc.model])  # the loop of this model's bearing kind (before the first run)
