@@ -15,7 +15,9 @@ defaults' μ as μ_slow). Prints:
 * the paper building in plan on the bearing in the square concrete moat (law H), the first 8 s
   of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°: Newmark at its
   default rtol and at 1e-6, 1e-7 against 1e-8: steps, loop CPU, the worst peak's relative
-  error; the constant-friction bearing at its default for scale;
+  error; the constant-friction bearing at its default for scale; the same for the 1D model
+  along x under the x record (its one-axis kernels read each step's duration from the loop),
+  and the 1D run against the plan run on a line (y at rest);
 * ``--twin-run``: that plan run's OpenSees twin (``femoat.opensees.plan``, tol 1e-6; at 1e-8 it
   stops converging) at 0.2, 0.1 and 0.05 ms: its worst peak against femoat at rtol 1e-8 (about
   a minute of OpenSees);
@@ -153,10 +155,15 @@ def runs_table():
     m = paper_motion()
     m8 = _first(m, 8.0)
     pair = RecordPair(m8, GroundMotion(-0.6 * m8.accel_g[::-1], m8.dt, name="y"), angle=30.0)
-    for label, plan, motion in (("plan", True, pair),):
-        def model(b):
-            return PlanModel(building=PlanBuilding(isolator=b))
 
+    def plan_model(b):
+        return PlanModel(building=PlanBuilding(isolator=b))
+
+    def line_model(b):
+        return plan_model(b).along("x")
+
+    for label, plan, motion, model in (("plan", True, pair, plan_model),
+                                       ("1D", False, m8, line_model)):
         run(model(BEARING), motion)  # (load the kernels)
         ref = _peaks(run(model(BEARING), motion,
                          integrator=Integrator(method="newmark", rtol=1e-8)), plan)
@@ -176,6 +183,13 @@ def runs_table():
         r = run(model(const), motion, history=False)
         print(f"constant friction (μ_slow) at its default ({r.meta['info']['method']}): "
               f"{r.peaks['steps']} steps, {time.process_time() - t:.3f} s")
+    zero = GroundMotion(0.0 * m8.accel_g, m8.dt, name="zero")
+    one = _peaks(run(line_model(BEARING), m8), False)
+    both = run(plan_model(BEARING), RecordPair(m8, zero)).peaks
+    on_line = np.array([both["peak_plan_base_displacement"], both["peak_impact_force_px"],
+                        both["peak_impact_force_mx"], *both["peak_drift_x"]])
+    print(f"1D run against the plan run on a line (y at rest), both at the default: worst peak "
+          f"{np.max(np.abs(one / on_line - 1.0)):.1e}")
 
 
 def suite_table(folder):

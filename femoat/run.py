@@ -92,7 +92,8 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         if not (math.isfinite(extra_time) and extra_time >= 0):
             raise ValueError(f"extra_time = {extra_time!r} must be a time >= 0 [s].")
         duration = motion.duration + extra_time
-    integ = integrator or (Integrator(method=plan_method(model)) if plan else Integrator())
+    integ = integrator or (Integrator(method=plan_method(model)) if plan else
+                           Integrator(method=axis_method(model)))
     packed = packed_model(model)
     kw = {} if channels is None else dict(channels=tuple(channels))
     limits, stop = _limits(model, packed, collapse)
@@ -144,6 +145,20 @@ def plan_method(model):
         return PLAN_METHOD
     covered = registry.rate_form_covers(registry.kinds()[kind], iso.params())
     return PLAN_METHOD if covered else PLAN_METHOD_PATH
+
+
+def axis_method(model):
+    """The default method of a 1D run of ``model`` (a
+    :class:`~femoat.structure.pounding.PoundingModel`): the Integrator's own, or
+    :data:`PLAN_METHOD_PATH` (Newmark) on an isolator that reads each step's duration (a triple
+    pendulum's velocity-dependent friction, :func:`femoat.bearings.registry.reads_duration`)."""
+    from femoat.bearings import registry
+
+    iso = model.building.isolator
+    kind = registry.kind_of(iso)
+    if kind is not None and registry.reads_duration(registry.kinds()[kind], iso.params()):
+        return PLAN_METHOD_PATH
+    return Integrator().method
 
 
 def _limits(model, packed, collapse):

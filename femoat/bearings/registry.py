@@ -192,6 +192,15 @@ def rate_form_covers(name, params):
     return True if covers is None else bool(covers(params))
 
 
+def reads_duration(name, params):
+    """Whether a bearing of kind module ``name`` and ``params`` reads the duration of each step
+    (its friction a return over the step: the triple pendulum's velocity-dependent friction), so
+    that its runs take Newmark's step, in 1D and in plan: the kind's optional
+    ``reads_duration(params)``; False for a kind without one."""
+    fn = getattr(importlib.import_module(name), "reads_duration", None)
+    return False if fn is None else bool(fn(params))
+
+
 def generate(names=None, compiled=None):
     """The dispatcher's source for the kinds ``names`` (default: the registered ones), with a
     branch for the kinds whose indices ``compiled`` lists (default: every one). A kind left

@@ -195,12 +195,13 @@ case (the same return to round-off: tested); ``z`` stores Q/(μ_i·W), so |z| > 
 slides faster than at rest. The step is first order in τ (a steady orbit's force converges at
 first order to its closed form: tested); OpenSees' element does the same step but reads each
 friction law at its element's whole deformation rate |Δd_i|/Δt from its previous Newton
-iteration. It needs the step's duration, which the plan kernels get and the one-axis kernels
-do not: a velocity-dependent bearing runs in plan, on Newmark's step (the rate form covers
-constant friction only: :func:`rate_form_covers`; ark5 refuses it); a 1D model of it is refused
-where it is packed. (Passing the duration to the one-axis kernels means one more argument of
-the material kernels that every element calls, which slowed every plan run: benchmarks/README.md,
-issue 28's velocity-dependent friction.)
+iteration. It needs the step's duration: the plan kernels are given it, the one-axis kernels
+read it from the last entry of their state row, where the loop writes the duration of the step it
+is solving (:data:`femoat.structure.materials.kernels.DURATION`; the one-axis kernels are the
+plan element at (u, 0) with that duration, to the bit: tested). A velocity-dependent bearing runs
+on Newmark's step, in 1D and in plan (the rate form covers constant friction only:
+:func:`rate_form_covers`; the explicit pairs and ark5 refuse it: their stages would take the
+return over their offsets).
 """
 
 from dataclasses import dataclass
@@ -225,7 +226,7 @@ GEOMETRY_REPLACES = ("L1", "L2", "L3", "d1", "d2", "d3")
 
 N_PARAMS = 22
 N_STATE_PLAN = 24  # the committed internal state, then the scratch slots of a path's pieces
-N_STATE_AXIS = N_STATE_PLAN  # one axis is the plan element with its y entries at 0
+N_STATE_AXIS = N_STATE_PLAN + 1  # the plan element's (y entries at 0), then the step's duration
 N_STATE = N_STATE_AXIS  # the one-axis form's (the material convention)
 _W, _UY, _K0 = range(3)
 _E0 = 3  # element i's [kr, q, uy, gap] start at _E0 + 4·i
@@ -884,15 +885,18 @@ def plan_rate_commit(p, s, ux, uy, vx, vy, z):
 @njit(cache=True)
 def axis_trial(p, s, u, v):
     """Force [kip], df/du [kip/in] and df/dv [kip·s/in] at the trial (u [in], v [in/s]) from the
-    committed state ``s`` (not modified): the plan element's x row at (u, 0)."""
-    r = series_solve(p, s, u, 0.0)
+    committed state ``s`` (not modified): the plan element's x row at (u, 0), reached in the
+    duration [s] held in the state row's last entry (read by velocity-dependent friction only;
+    the loop writes it: :data:`femoat.structure.materials.kernels.DURATION`)."""
+    r = _series(p, s, 0, u, 0.0, 0, s, s[s.size - 1])
     return r[0], r[2], 0.0
 
 
 @njit(cache=True)
 def axis_commit(p, s, u, v):
-    """Advance the committed state ``s`` in place to the converged (u, v) (plan at (u, 0))."""
-    _store(s, 0, series_solve(p, s, u, 0.0))
+    """Advance the committed state ``s`` in place to the converged (u, v) (the plan element at
+    (u, 0), reached in the duration held in the row's last entry, as :func:`axis_trial`)."""
+    _store(s, 0, _series(p, s, 0, u, 0.0, 0, s, s[s.size - 1]))
 
 
 @njit(cache=True)
@@ -936,8 +940,7 @@ class TripleFrictionPendulum(BearingFaces):
     a : float
         Rate parameter of the velocity dependence [s/in], > 0 with the μ_fast; 0 without.
 
-    Velocity-dependent friction runs in plan, on Newmark's step (module docstring); a 1D
-    model of it is refused (its one-axis kernels are not given the step's duration).
+    Velocity-dependent friction runs on Newmark's step, in 1D and in plan (module docstring).
 
     The defaults are a typical bearing: inner L1 = 12 in and outer L2 = L3 = 88 in (the
     isolated period of the large-displacement regime III, 2π·sqrt((L2 + L3)/g), is 4.2 s),
@@ -1081,12 +1084,6 @@ class TripleFrictionPendulum(BearingFaces):
         return (0.5, self.L2 / (self.L2 - self.L1), self.L3 / (self.L3 - self.L1))
 
     @property
-    def one_axis_applies(self) -> bool:
-        """Whether a 1D building can stand on this bearing (constant friction only: the one-axis
-        kernels are not given the step's duration that velocity-dependent friction reads)."""
-        return not self.velocity_dependent
-
-    @property
     def gaps(self) -> tuple:
         """The series elements' gaps g_i [in] (their restrainers; module docstring)."""
         m = min(self.d2 / self.L2, self.d3 / self.L3)
@@ -1134,7 +1131,14 @@ class TripleFrictionPendulum(BearingFaces):
 def rate_form_covers(params):
     """Whether the rate form (the coupled-friction step's) covers a bearing of these params:
     constant friction only; velocity-dependent friction follows each step's path (Newmark)."""
-    return not params[_RATE + 1] > 0.0
+    return not reads_duration(params)
+
+
+def reads_duration(params):
+    """Whether a bearing of these params reads each step's duration (velocity-dependent
+    friction, a backward-Euler return over the step: module docstring), so that its runs take
+    Newmark's step, in 1D and in plan."""
+    return bool(params[_RATE + 1] > 0.0)
 
 
 AXIS_CLASS = TripleFrictionPendulum

@@ -228,7 +228,10 @@ def find_kink(hh, model, state, work, fine):
     """
     theta = 2.0
     el_code, el_P, el_S = model.el_code, model.el_P, state.el_S
+    last = el_S.shape[1] - 1
     for e in range(el_code.size):
+        if el_S[e, last] != -1.0:
+            continue  # its tangent depends on the step's duration (materials.kernels.DURATION)
         d0, d1 = state.el_d[e], work.ed[e]
         dv0 = _element_rates(e, model, state.v)
         dv1 = _element_rates(e, model, work.v)

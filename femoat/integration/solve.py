@@ -19,6 +19,7 @@ from femoat.integration.recording.episodes import N_EP, N_IMPACT
 from femoat.integration.recording.peaks import size as pk_size
 from femoat.integration.recording.recorder import RING_ROWS
 from femoat.integration.settings import Integrator
+from femoat.structure.materials.codes import BEARING
 from femoat.structure.roles import ISOLATOR, STORY
 from femoat.units import G
 
@@ -237,6 +238,7 @@ def _settings(packed, integ, ag, dt_rec, duration, limits, lazy, stop_at_limit, 
     method = methods.module(integ.method)
     if packed.bearing_dofs.size:
         _check_plan_method(integ.method, packed)
+    _check_axis_method(integ.method, packed)
     return Settings(
         method=methods.CODES[integ.method], quintic_peaks=bool(method.QUINTIC_DENSE),
         beta=float(integ.beta), gamma=float(integ.gamma), alpha=float(integ.alpha),
@@ -283,6 +285,24 @@ def _check_plan_method(name, packed):
                     "a triple pendulum's velocity-dependent friction): its friction would be "
                     "a backward-Euler return over each stage (first order in the step). Use "
                     "Integrator(method='newmark'), the default of a plan run on this bearing.")
+
+
+def _check_axis_method(name, packed):
+    """Refuse any method but Newmark's on a one-axis bearing that reads each step's duration
+    (:func:`femoat.bearings.registry.reads_duration`; the loop gives it on Newmark's step)."""
+    if name == "newmark":
+        return
+    for code, p in zip(packed.el_code, packed.el_P):
+        if code < BEARING:
+            continue
+        kind = bearing_registry.kinds()[code - BEARING]
+        if bearing_registry.reads_duration(kind, p):
+            raise ValueError(
+                f"method = {name!r} on a 1D isolator with velocity-dependent friction ({kind}): "
+                "its friction is a backward-Euler return over each step, which a stage would "
+                "take over the stage's offset (first order in the step), and only Newmark's "
+                "solve gives it the step's duration. Use Integrator(method='newmark'), the "
+                "default of a run on this bearing.")
 
 
 def _bundles(packed, ag, u, v, settings):

@@ -9,7 +9,7 @@ from femoat.integration.methods import EXPLICIT_PAIRS
 from femoat.integration.settings import Integrator
 from femoat.plan.model import PlanModel
 from femoat.plan.moat import SIDES
-from femoat.run import PLAN_METHOD, plan_method
+from femoat.run import PLAN_METHOD, axis_method, plan_method
 from femoat.scenario import building, moat, motion, pair, solver, walls
 from femoat.scenario.reading import check_keys, flag, read_toml, subtable, text
 from femoat.structure.pounding import PoundingModel
@@ -127,8 +127,17 @@ def model_from_dict(d, base_dir=Path(".")):
 
 def integrator_for(model, table):
     """The Integrator of a ``[solver]`` table for ``model``: a plan model's method defaults to
-    a plan run's own (:func:`femoat.run.plan_method`), a 1D model's to the Integrator's."""
+    a plan run's own (:func:`femoat.run.plan_method`), a 1D model's to a 1D run's
+    (:func:`femoat.run.axis_method`: the Integrator's, Newmark on velocity-dependent friction)."""
     table = dict(table)
+    if not isinstance(model, PlanModel) and axis_method(model) != Integrator().method:
+        table.setdefault("method", axis_method(model))
+        if table["method"] != "newmark":
+            raise ValueError(
+                f"[solver] method = {table['method']!r}: this isolator's velocity-dependent "
+                "friction is a return over each step, which only Newmark's step gives the "
+                "step's duration; write method = \"newmark\" in [solver] or leave method out "
+                "(this file's default).")
     if isinstance(model, PlanModel):
         default = plan_method(model)
         table.setdefault("method", default)

@@ -12,6 +12,7 @@ import numpy as np
 
 from femoat.bearings import registry as bearing_registry
 from femoat.contact.kernels import N_HISTORY, N_PARAMS
+from femoat.structure.materials.kernels import DURATION, DURATION_COLUMNS
 from femoat.structure.moat_wall import wall_modes
 from femoat.structure.packed import PackedModel
 from femoat.structure.roles import ISOLATOR, STORY, Role
@@ -60,13 +61,6 @@ def pack(building, stories, layout, walls, bearing=None):
             _add_spring(K, i, j, geometric[k])
             elements.append((i, j, a, mat, Role(STORY, k + 1)))
     iso = b.isolator
-    if iso is not None and bearing is None and not getattr(iso, "one_axis_applies", True):
-        raise ValueError(
-            f"isolator: this {type(iso).__name__} has velocity-dependent friction (mu1_fast, "
-            "mu2_fast, mu3_fast), which femoat models in plan only (each surface's friction "
-            "reads its own sliding rate over the step, which the one-axis kernels are not "
-            "given). Run it on a plan building (femoat.plan.PlanBuilding; a 1D record as "
-            "RecordPair(record, zeros)), or give the 1D building constant friction (no mu_fast).")
     if iso is not None and bearing is None:
         elements = [(dofs[0, a], -1, a, iso, Role(ISOLATOR)) for a in axes] + elements
     contacts = []
@@ -91,7 +85,7 @@ def pack(building, stories, layout, walls, bearing=None):
         el_axis=np.array([e[2] for e in elements], dtype=np.int64),
         el_code=np.array([e[3].code for e in elements], dtype=np.int64),
         el_P=_stack([e[3].params() for e in elements]),
-        el_S=_stack([e[3].initial_state() for e in elements]),
+        el_S=_element_states([e[3] for e in elements]),
         el_roles=tuple(e[4] for e in elements),
         el_materials=[e[3] for e in elements],
         bearing_kind=np.array(bearings, dtype=np.int64),
@@ -119,12 +113,31 @@ def _add_spring(A, i, j, value):
         A[j, i] -= value
 
 
-def _stack(rows, width=None):
-    """The rows (sequences of floats) as one array, zero-padded to the longest (at least
-    ``width`` columns when there is no row)."""
+def _element_states(materials):
+    """The elements' initial states, one row each, with the duration column last
+    (:data:`~femoat.structure.materials.kernels.DURATION`): 0 for a material that reads each
+    step's duration, −1 for one that does not (the loop then neither writes it nor lets the
+    one-axis kink search skip the element)."""
+    out = _stack([m.initial_state() for m in materials], extra=DURATION_COLUMNS)
+    for row, m in zip(out, materials):
+        row[DURATION] = 0.0 if _reads_duration(m) else -1.0
+    return out
+
+
+def _reads_duration(material):
+    """Whether ``material`` (a story material or a bearing on one axis) reads each step's
+    duration (:func:`femoat.bearings.registry.reads_duration`)."""
+    kind = bearing_registry.kind_of(material)
+    return kind is not None and bearing_registry.reads_duration(bearing_registry.kinds()[kind],
+                                                                material.params())
+
+
+def _stack(rows, width=None, extra=0):
+    """The rows (sequences of floats) as one array, zero-padded to the longest and ``extra``
+    columns more (at least ``width`` columns when there is no row)."""
     if not rows:
         return np.zeros((0, width or 1))
-    w = max(len(r) for r in rows)
+    w = max(len(r) for r in rows) + extra
     out = np.zeros((len(rows), w))
     for i, row in enumerate(rows):
         out[i, : len(row)] = row

@@ -32,6 +32,7 @@ from femoat.integration.forces import (
 )
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
 from femoat.integration.recording.episodes import EP_MAX_INDENT, EP_PHASE, OPEN
+from femoat.structure.materials.kernels import stamp_duration
 
 NAME = "newmark"
 """The method's name (``Integrator(method=...)``)."""
@@ -240,6 +241,7 @@ def newton_step(hh, ag1, any_closed, model, state, settings, work):
     ag0 = state.ag_now
     for i in range(state.a.size):
         work.a[i] = state.a[i]
+    stamp_duration(state.el_S, hh)  # (read by a material whose return depends on it)
     converged = False
     evaluated = False
     it = 0

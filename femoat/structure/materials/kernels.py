@@ -12,6 +12,14 @@ the elastic range). Every material has a params array ``p`` and a committed stat
 * :func:`material_recoverable_energy` is the elastic energy [kip·in] stored at the committed
   state: hysteretic dissipation = ∫f du − recoverable.
 
+The state rows of a packed model's elements (``el_S``) have one column more than the widest
+material's state, :data:`DURATION`: for a material whose return over the step depends on its
+duration (the triple pendulum's velocity-dependent friction, whose one-axis state ends with that
+entry too), the duration [s] of the step the loop is solving from the committed state to the
+trial, written by Newmark's solve (:func:`stamp_duration`; 0 before the first step); −1 for every
+other material, which never reads it. The one-axis kink search skips an element whose column is
+not −1 (its tangent along a step depends on the step's duration, not only on a branch).
+
 The isolation bearings' codes start at ``BEARING`` (one code per bearing kind of
 :mod:`femoat.bearings.registry`, its one-axis kernels through the registry's dispatcher).
 
@@ -30,6 +38,12 @@ from femoat.structure.materials.bilinear import bilinear_commit, bilinear_energy
 from femoat.structure.materials.codes import BEARING, BILINEAR, ELASTIC, IMK
 from femoat.structure.materials.elastic import elastic_commit, elastic_energy, elastic_trial
 from femoat.structure.materials.imk import imk_commit, imk_energy, imk_trial
+
+DURATION = -1
+"""Column of an element's state row that holds the duration [s] of the step being solved."""
+
+DURATION_COLUMNS = 1
+"""Columns a packed model's element states carry after the widest material's (:data:`DURATION`)."""
 
 _SIZES = {  # code: (params, state)
     ELASTIC: (elastic.N_PARAMS, elastic.N_STATE),
@@ -57,6 +71,16 @@ def state_size(code: int) -> int:
 def param_size(code: int) -> int:
     """Length of the params array of material ``code``."""
     return _sizes(code)[0]
+
+
+@njit(cache=True)
+def stamp_duration(el_S, tau):
+    """Write the duration ``tau`` [s] of the step about to be solved into the state row of every
+    element that reads it (its last entry, :data:`DURATION`, not −1)."""
+    last = el_S.shape[1] - 1
+    for e in range(el_S.shape[0]):
+        if el_S[e, last] != -1.0:
+            el_S[e, last] = tau
 
 
 @njit(cache=True)
