@@ -44,8 +44,9 @@ def run(model, motion, integrator=None, extra_time=2.0, duration=None, u0=None, 
         together, turned by its angle). A plan run returns a
         :class:`~femoat.results.plan.PlanRunResult`.
     integrator : Integrator or None
-        Integration settings (default: ``Integrator()``, the fifth-order step at rtol = 1e-5;
-        a plan run: :func:`plan_method`'s).
+        Integration settings (default: ``Integrator()``, the fifth-order step at rtol = 1e-5, or
+        Newmark's on a velocity-dependent triple pendulum, :func:`axis_method`; a plan run:
+        :func:`plan_method`'s).
     extra_time : float
         Free vibration after the record [s] (default 2 s, as in the paper study).
     duration : float or None

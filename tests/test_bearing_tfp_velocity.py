@@ -273,8 +273,8 @@ def test_a_1d_run_takes_newmark_and_agrees_with_the_plan_run_on_a_line():
     # would take the return over their offsets. The paper building in the concrete moat under
     # Erzincan (first 6 s, law H): within 1e-3 of its run at rtol 1e-8 on every peak with the
     # same impacts (measured 7.1e-4, a drift), its energy balance closed (the work done on the
-    # bearing = its recoverable energy + what the returns dissipated; measured 1.2e-11 of the
-    # input), and within 1e-3 of the plan model along x under the same record and a zero y
+    # bearing = its recoverable energy + what the returns dissipated; measured 3.0e-14 of the
+    # input, 2e-9 before a restart after a contact event stamped a zero duration), and within 1e-3 of the plan model along x under the same record and a zero y
     # component (not the same steps: the plan run lands on the bearing's branch changes, the
     # 1D kink search skips a bearing whose tangent depends on the step; measured 2.7e-5), the
     # same impacts.
@@ -304,7 +304,7 @@ def test_a_1d_run_takes_newmark_and_agrees_with_the_plan_run_on_a_line():
         [converged.peaks["impacts_pos"], converged.peaks["impacts_neg"]]
     np.testing.assert_allclose(peaks(one), peaks(converged), rtol=1e-3)
     energy = one.meta["energy"]
-    assert abs(energy["residual"]) < 1e-9 * energy["input"]
+    assert energy["residual"] < 1e-12  # (relative to the input)
     assert [one.peaks["impacts_pos"], one.peaks["impacts_neg"]] == \
         [both.peaks["impacts_px"], both.peaks["impacts_mx"]]
     np.testing.assert_allclose(
@@ -422,7 +422,7 @@ def test_a_plan_run_converges_and_the_velocity_dependence_acts():
     # (Newmark at its rtol) within 1e-3 of the run at rtol 1e-8 on every peak (measured 2.0e-4),
     # the same impacts on every wall. The energy balance closes (the work done on the bearing
     # = its recoverable energy + friction dissipated, the returns' incremental potentials:
-    # measured residual 3e-14 of the input). The friction acts at speed: the peaks differ from
+    # measured residual 3.6e-14 of the input). The friction acts at speed: the peaks differ from
     # both constant-friction bearings', at μ_slow and at μ_fast (with the same sticking
     # stiffness), by far more than the run's error (the impact forces by 12-14 % and 4-7 %).
     from femoat.ground_motions import GroundMotion, RecordPair
@@ -454,7 +454,7 @@ def test_a_plan_run_converges_and_the_velocity_dependence_acts():
         [converged.peaks[f"impacts_{t}"] for t in tags]
     np.testing.assert_allclose(peaks(default), peaks(converged), rtol=1e-3)
     energy = default.meta["energy"]
-    assert abs(energy["residual"]) < 1e-9 * energy["input"]
+    assert energy["residual"] < 1e-12  # (relative to the input)
     slow = run(model(TripleFrictionPendulum()), pair)
     fast = run(model(TripleFrictionPendulum(mu1=0.03, mu2=0.08, mu3=0.15, u_y=0.025)), pair)
     for other in (slow, fast):

@@ -162,13 +162,14 @@ u_y_OS = u_y·μ1_OS/μ1, so that its elements are these to round-off.
 Params ``p = [W, u_y, k_0, kr_1, q_1, uy_1, g_1, kr_2, q_2, uy_2, g_2, kr_3, q_3, uy_3, g_3,
 scale]``: weight [kip], u_y [in], k_0 [kip/in], then per element its restoring stiffness W/L̄_i
 [kip/in], friction force μ_i·W [kip], yield displacement [in] and gap [in], and the length
-[in] that scales the solver's tolerances (the capacity). State (one axis and plan alike,
-``N_STATE_AXIS = N_STATE_PLAN`` = 24): ``s[:12] = [d_1x, d_1y, d_2x, d_2y, d_3x, d_3y, z_1x,
+[in] that scales the solver's tolerances (the capacity). State (``N_STATE_PLAN`` = 24 in plan;
+on one axis the same then the step's duration, ``N_STATE_AXIS`` = 25): ``s[:12] = [d_1x, d_1y, d_2x, d_2y, d_3x, d_3y, z_1x,
 z_1y, z_2x, z_2y, z_3x, z_3y]``, the committed internal displacements [in] and hysteretic
 vectors [-] (on one axis the y entries stay 0), which only ``plan_commit`` and ``axis_commit``
 modify; ``s[12:]`` scratch slots, the internal state at the end of a piece while a plan trial
 walks a curved path (written by ``plan_trial`` and ``plan_commit``, never read before they write
-them: not part of the state's value).
+them: not part of the state's value); on one axis ``s[-1]`` the duration [s] of the step being
+solved, written by the loop (:data:`femoat.structure.materials.kernels.DURATION`).
 
 Recoverable energy: Σ_i (W/L̄_i)·|d_i|²/2 + μ_i·W·u_y,i·|z_i|²/2 + k_0·(|d_i| − g_i)₊²/2.
 

@@ -20,6 +20,7 @@ from femoat.integration.forces import (
 from femoat.integration.interpolants import crossing, quintic
 from femoat.integration.kinks import KINK_RESOLUTION
 from femoat.integration.recording.recorder import mark_last_sample, sample_before_event
+from femoat.structure.materials.kernels import stamp_duration
 
 
 H_START = 1e-3
@@ -40,6 +41,7 @@ def restart(model, state, work):
     ag_now = state.ag_now
     n = u.size
     out = Outputs(work.ef, work.ed, state.c_f, state.c_d, Fn, state.b_f, state.c_ft)
+    stamp_duration(state.el_S, 0.0)  # (the committed state itself: no step)
     _internal_force(u, v, model, state, work, out, False, n, u, v, 0.0)
     for i in range(n):
         w_b[i] = ground_load(r, i, ag_now) - Fn[i]

@@ -301,8 +301,8 @@ def _check_axis_method(name, packed):
                 f"method = {name!r} on a 1D isolator with velocity-dependent friction ({kind}): "
                 "its friction is a backward-Euler return over each step, which a stage would "
                 "take over the stage's offset (first order in the step), and only Newmark's "
-                "solve gives it the step's duration. Use Integrator(method='newmark'), the "
-                "default of a run on this bearing.")
+                "solve gives it the step's duration. Use Integrator(method='newmark') (what "
+                "femoat.run.run chooses for this bearing by default).")
 
 
 def _bundles(packed, ag, u, v, settings):

@@ -3,7 +3,7 @@
 Conventions: deformation u [in] and its rate v [in/s] are positive in the element's positive
 direction; the force f [kip] is the force the element resists with (positive for positive u in
 the elastic range). Every material has a params array ``p`` and a committed state array ``s``
-(float64, length :func:`state_size`).
+(float64, length :func:`state_size`; in a packed model a row one entry longer, below).
 
 * :func:`material_trial` returns ``(f, df/du, df/dv)`` for a trial (u, v) from the *committed*
   state, which it never modifies, so a Newton iteration may call it any number of times; df/du is
