@@ -267,6 +267,30 @@ def test_along_one_axis_the_plan_bearing_is_the_axis_bearing():
     assert np.max(np.abs(sa[6:12:2])) > 1.0  # the elements slid faster than at rest
 
 
+def test_the_design_loop_reads_the_friction_at_its_nominal_speed():
+    # isolation_design.effective_properties cycles a one-axis bearing at 1 in/s; a
+    # velocity-dependent bearing is stepped with each step's duration at that speed. With a
+    # huge rate parameter (a = 1e6 s/in: μ = μ_fast at any slip rate above ~1e-5 in/s) its
+    # loop is the constant bearing's at μ_fast (but for the first instants of each slip, whose
+    # rate starts from 0: to 1e-7); with a vanishing one (1e-12 s/in) the constant bearing's at
+    # μ_slow (to 1e-9; the same sticking stiffness 3·μ1·W/u_y in all); a = 1 s/in, whose
+    # surfaces slide at fact_i times their share of 1 in/s, lies strictly between.
+    from femoat.structure.isolation_design import effective_properties
+
+    amp = 10.0
+    slow = effective_properties(TripleFrictionPendulum(), amp)
+    k0 = TripleFrictionPendulum().sticking_stiffness
+    fast_const = TripleFrictionPendulum(mu1=0.03, mu2=0.08, mu3=0.15,
+                                        u_y=3.0 * 0.03 * 33.0 / k0)
+    fast = effective_properties(fast_const, amp)
+    np.testing.assert_allclose(effective_properties(  # (measured 1.7e-8: each slip's onset)
+        TripleFrictionPendulum(**{**FAST, "a": 1e6}), amp), fast, rtol=1e-7)
+    np.testing.assert_allclose(effective_properties(
+        TripleFrictionPendulum(**{**FAST, "a": 1e-12}), amp), slow, rtol=1e-9)
+    k, beta = effective_properties(BEARING, amp)
+    assert slow[0] < k < fast[0] and slow[1] < beta < fast[1]
+
+
 def test_a_1d_run_takes_newmark_and_agrees_with_the_plan_run_on_a_line():
     # A 1D building on the bearing runs on Newmark's step by default (whose solve writes each
     # step's duration into the element states) and refuses the other methods, whose stages

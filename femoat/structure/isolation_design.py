@@ -58,8 +58,9 @@ def damping_coefficient(beta):
 
 def effective_properties(bearing, amplitude, cycles=2):
     """(k_eff [kip/in], β_eff [-]) of ``bearing`` (a one-axis bearing of any registered kind)
-    cycled at ±``amplitude`` [in]: the force at the tip over the amplitude, and the last
-    cycle's loop energy over 2π·k_eff·D² (module docstring)."""
+    cycled at ±``amplitude`` [in] at 1 in/s (what rate-dependent friction reads): the force at
+    the tip over the amplitude, and the last cycle's loop energy over 2π·k_eff·D² (module
+    docstring)."""
     if not (isinstance(amplitude, (int, float)) and math.isfinite(amplitude) and amplitude > 0):
         raise ValueError(f"amplitude = {amplitude!r} [in]: expected a positive displacement.")
     kind = registry.kind_of(bearing)
@@ -74,10 +75,15 @@ def effective_properties(bearing, amplitude, cycles=2):
     up = np.linspace(-amplitude, amplitude, n // 2 + 1)[1:]
     path = np.concatenate([quarter, *([down, up] * cycles)])
     speed = 1.0  # [in/s] a nominal sliding speed for rate-dependent friction (its sign matters)
+    # a bearing whose one-axis state ends with the step's duration reads it there
+    # (femoat.structure.materials.kernels.DURATION): each step taken at that speed
+    timed = registry.reads_duration(registry.kinds()[kind], p)
     force = np.empty(path.size)
     prev = 0.0
     for i, u in enumerate(path):
         v = math.copysign(speed, u - prev) if u != prev else 0.0
+        if timed:
+            s[-1] = abs(u - prev) / speed
         force[i] = mod.axis_trial(p, s, u, v)[0]
         mod.axis_commit(p, s, u, v)
         prev = u
