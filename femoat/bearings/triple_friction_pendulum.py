@@ -628,16 +628,26 @@ def _on_rim(s, i):
     return zx * zx + zy * zy >= 1.0 - 1e-9
 
 
+LOADING = 1e-6
+"""[-] A sliding element is carried only while the cosine of the angle between its friction
+direction z_i and its own displacement rate ḋ_i exceeds this (:func:`plan_rate_active`): one that
+moves within this of perpendicular to z_i counts as unloading. A turn search that landed a hair
+before the element unloads leaves it there with z_i·ḋ_i a round-off above zero, and its crossing
+in the next step too close to the start to land on (below the driver's smallest step); carried,
+it would slide backwards for a whole step. Counted as unloading, the step takes the radial
+return from the committed state, whose error over the sliver is of the order of this squared."""
+
+
 @njit(cache=True)
 def plan_rate_active(p, s, vx, vy):
     """True when the inner element (element 1, the first to slide) slides at the committed
-    state and the velocity (vx, vy) [in/s] keeps loading it (z_1·ḋ_1 > 0, ḋ_1 its own
-    displacement rate in the series, :func:`_series_rate`): over a step from here the sliding
-    elements' hysteretic vectors are states with the rate :func:`plan_rate`. Marks which
+    state and the velocity (vx, vy) [in/s] keeps loading it (z_1·ḋ_1 > LOADING·|ḋ_1|, ḋ_1 its
+    own displacement rate in the series, :func:`_series_rate`): over a step from here the
+    sliding elements' hysteretic vectors are states with the rate :func:`plan_rate`. Marks which
     elements the step carries in the scratch slot ``_CARRY``: element 1 and each other element
-    that slides and is loaded (z_i·ḋ_i > 0); the others stick, their z the radial return from
-    the committed state (exact while they stick; where one starts to slide the kink search
-    lands the step)."""
+    that slides and is loaded (z_i·ḋ_i > LOADING·|ḋ_i|, :data:`LOADING`); the others stick, their
+    z the radial return from the committed state (exact while they stick; where one starts to
+    slide the kink search lands the step)."""
     if p[_RATE + 1] > 0.0 or not _on_rim(s, 0):  # (velocity-dependent: the path form)
         return False
     carry = 1
@@ -655,7 +665,7 @@ def plan_rate_active(p, s, vx, vy):
             if (carry >> i) & 1:
                 ci = comp[i]
                 ddx, ddy = ci[0] * fx + ci[1] * fy, ci[1] * fx + ci[2] * fy
-                if z[2 * i] * ddx + z[2 * i + 1] * ddy > 0.0:
+                if z[2 * i] * ddx + z[2 * i + 1] * ddy > LOADING * np.sqrt(ddx * ddx + ddy * ddy):
                     keep |= 1 << i
         if keep == carry:
             break
