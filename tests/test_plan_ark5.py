@@ -139,7 +139,7 @@ def _circle(amplitude):
 
 @pytest.mark.parametrize("orbit, divisions, least", [
     ("circle 0.06 g", (1, 2, 4, 8, 16), 3.0),  # measured 3.41 (1.9, 3.0, 3.9, 4.9 per halving)
-    ("ellipse", (1, 2, 4, 8), 3.0),            # measured 3.34 (3.9, 3.1, 3.2)
+    ("ellipse", (1, 2, 4, 8), 3.0),            # measured 3.45 (3.9, 3.1, 3.5)
     ("eight", (2, 4, 8, 16), 2.0),             # measured 2.43 (1.9, 2.4, 3.0)
 ])
 def test_the_triple_pendulum_converges_on_the_coupled_friction_step(orbit, divisions, least):
@@ -195,6 +195,33 @@ def test_the_triple_pendulum_lands_on_an_unloading_at_every_step_size(orbit, div
 
     errors = _errors(orbit, divisions, 256, TripleFrictionPendulum())
     assert max(errors) < 1e-7, errors
+
+
+def test_the_triple_pendulum_carries_an_outer_element_that_slides_alone():
+    # In plan the outer element of L2 can slide while the inner element sticks (its force
+    # turned away from its own slip): far-field pair 1 at the MCE (time x 0.5, the bidirectional
+    # study's anchoring scale) drives the default triple pendulum under the paper building
+    # through such episodes at 2.031-2.044 s (each sample's series branch 010, measured). A
+    # step that carries z only while the inner element slides leaves them to the path form,
+    # first order in the step: ark5's end state at 2.1 s then converged with rtol like a
+    # first-order method (7.8e-5 off rtol 1e-10 at rtol 1e-8, 3.5e-5 at 1e-9: measured),
+    # and the −x wall's impact force at the default was 3.4e-3 off converged. Carrying any
+    # sliding, loaded element: 5.0e-7 and 8.9e-8 (measured), 2e-6 asserted. The error is the
+    # largest of the base's displacement [in] and velocity [in/s] components at 2.1 s.
+    from femoat.bearings.triple_friction_pendulum import TripleFrictionPendulum
+    from femoat.ground_motions import fema_p695_pair
+    from femoat.studies.bidirectional import full_anchor
+
+    p = fema_p695_pair("farfield", 1, scale=full_anchor(), normalized=True)
+    pair = RecordPair(p.x.time_scaled(0.5), p.y.time_scaled(0.5), scale=p.scale)
+    model = PlanModel(PlanBuilding(isolator=TripleFrictionPendulum()),
+                      rectangular_moat("concrete", "H", gap=4.0))
+
+    def end(rtol):
+        r = run(model, pair, Integrator(method="ark5", rtol=rtol), duration=2.1)
+        return np.concatenate([r.base_displacement[-1], r.base_velocity[-1]])
+
+    assert np.abs(end(1e-8) - end(1e-10)).max() < 2e-6
 
 
 def test_a_plan_run_defaults_to_ark5_where_the_bearing_has_a_rate_form(monkeypatch):

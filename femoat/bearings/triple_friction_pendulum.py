@@ -135,9 +135,11 @@ accuracy. The tangent is the last piece's (Newton only needs it approximately: 2
 iterations than with the chord).
 
 Rate form (the coupled-friction step, :mod:`femoat.integration.methods.ark5`; a plan run's
-default): while the inner element slides and loads, each element that slides and loads carries
-its z as a state of the step (``N_RATE_PLAN`` = 6: z_1, z_2, z_3; the carried mask in the scratch
-slot ``_CARRY``, set by :func:`plan_rate_active`). The series carries one force F, so with each
+default): each element that slides and loads carries its z as a state of the step (in plan the
+outer element can slide while the inner one sticks; an element a hair inside its rim that would
+reach it within :data:`SNAP` counts as sliding, one moving within :data:`LOADING` of
+perpendicular to its z as unloading; ``N_RATE_PLAN`` = 6: z_1, z_2, z_3; the carried mask in
+the scratch slot ``_CARRY``, set by :func:`plan_rate_active`). The series carries one force F, so with each
 element's compliance C_i (its spring and restrainer, and for a carried element the sliding rule's
 μ_i·W/u_y,i·(I − z_i z_iᵀ), for the others their sticking stiffness) Ḟ = (Σ C_i)⁻¹·v, ḋ_i = C_i·Ḟ,
 and a carried z moves by the single pendulum's rule on its own displacement rate,
@@ -638,24 +640,57 @@ it would slide backwards for a whole step. Counted as unloading, the step takes 
 return from the committed state, whose error over the sliver is of the order of this squared."""
 
 
+SNAP = 1e-9
+"""[s] An element whose hysteretic vector sits a hair inside its rim (|z_i|² within 1e-6 of 1)
+but would reach it at its sticking rate sooner than this counts as sliding at a step's start
+(:func:`plan_rate_active`; its z put on the rim moves its friction force by μ_i·W·(1 − |z_i|),
+less than μ_i·W·SNAP·ḋ_r/u_y,i with ḋ_r its outward rate while sticking). The kink search resolves a switch no closer to a step's start
+than 2^-24 of it (6e-10 s at a 10 ms step) and the driver lands no step shorter than its smallest
+(1e-10 s by default): left sticking, such an element would start to slide inside the step by the
+radial return from the committed state, first order in the step, and its slip error stays in
+the force for the rest of the run. Such states follow a sliver landed on another element's
+switch, which can leave a sliding element's z just inside its rim."""
+
+
 @njit(cache=True)
 def plan_rate_active(p, s, vx, vy):
-    """True when the inner element (element 1, the first to slide) slides at the committed
-    state and the velocity (vx, vy) [in/s] keeps loading it (z_1·ḋ_1 > LOADING·|ḋ_1|, ḋ_1 its
-    own displacement rate in the series, :func:`_series_rate`): over a step from here the
-    sliding elements' hysteretic vectors are states with the rate :func:`plan_rate`. Marks which
-    elements the step carries in the scratch slot ``_CARRY``: element 1 and each other element
-    that slides and is loaded (z_i·ḋ_i > LOADING·|ḋ_i|, :data:`LOADING`); the others stick, their
-    z the radial return from the committed state (exact while they stick; where one starts to
-    slide the kink search lands the step)."""
-    if p[_RATE + 1] > 0.0 or not _on_rim(s, 0):  # (velocity-dependent: the path form)
+    """True when some element slides at the committed state and the velocity (vx, vy) [in/s]
+    keeps loading it (z_i·ḋ_i > LOADING·|ḋ_i|, ḋ_i its own displacement rate in the series,
+    :func:`_series_rate`, :data:`LOADING`): over a step from here the sliding, loaded elements'
+    hysteretic vectors are states with the rate :func:`plan_rate`. Marks which elements the step
+    carries in the scratch slot ``_CARRY``; the others stick, their z the radial return from the
+    committed state (exact while they stick; where one starts to slide the kink search lands the
+    step). Any element may be carried alone: in plan the outer element of L2 can slide while the
+    inner one sticks (the inner element's force turned away from its own slip), and a step
+    that left that to the path form was first order in the step (benchmarks/README.md, issue
+    28). An element within :data:`SNAP` of its rim counts as on it (its z put there in ``s``)."""
+    if p[_RATE + 1] > 0.0:  # (velocity-dependent: the path form)
         return False
-    carry = 1
-    for i in range(1, 3):
+    carry = 0
+    for i in range(3):
         if _on_rim(s, i):
             carry |= 1 << i
     z = s[6:12]
     ux, uy = s[0] + s[2] + s[4], s[1] + s[3] + s[5]
+    # an element a hair inside its rim that reaches it sooner than SNAP at its sticking rate
+    # slides (no step can land that close to its start): its z put on the rim
+    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+    fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
+    for i in range(3):
+        zx, zy = z[2 * i], z[2 * i + 1]
+        zz = zx * zx + zy * zy
+        if (carry >> i) & 1 or zz < 1.0 - 1e-6:
+            continue
+        ci = comp[i]
+        ddx, ddy = ci[0] * fx + ci[1] * fy, ci[1] * fx + ci[2] * fy
+        norm = np.sqrt(zz)
+        out = (zx * ddx + zy * ddy) / norm  # [in/s] its rate away from the disk's centre
+        if out > 0.0 and (1.0 - norm) * p[_E0 + 4 * i + 2] < SNAP * out:
+            z[2 * i], z[2 * i + 1] = zx / norm, zy / norm
+            carry |= 1 << i
+    if carry == 0:
+        return False
     for _ in range(3):
         r = _series(p, s, 0, ux, uy, 0, s, 0.0)
         kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
@@ -670,7 +705,7 @@ def plan_rate_active(p, s, vx, vy):
         if keep == carry:
             break
         carry = keep
-    if not carry & 1:
+    if carry == 0:
         return False
     s[_CARRY] = float(carry)
     return True
