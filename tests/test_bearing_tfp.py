@@ -378,6 +378,56 @@ def test_far_trials_are_solved_and_a_nan_trial_gives_nan():
     assert np.isnan(r[0]) and np.isnan(r[2]) and r[17] == 1
 
 
+@pytest.mark.parametrize("size", [0.01, 0.3, 3.0])
+def test_a_carried_solve_in_closed_form_is_the_newton_minimum(size):
+    # A carried solve (the rate form's stage force: the carried elements slide at a given z,
+    # the others from the committed state) is affine while every other element sticks and no
+    # restrainer is reached: f_i = k_i·d_i + c_i with scalar k_i, so F = (u + Σ c_i/k_i)/Σ 1/k_i
+    # (tfp._carried_affine). The series energy is convex, so that is the minimum the Newton
+    # solve approaches: they agree to its tolerance (1e-14 of |u| + the capacity; measured
+    # below 1e-13, 1e-12 asserted) and on the branch, and where the closed form declines, the
+    # Newton answer indeed has an uncarried element sliding or a restrainer touched. Committed states from random walks, each sliding
+    # element carried at its z turned by a random angle, increments of ``size`` [in]. The Newton
+    # solve reads the same committed state from the path's scratch slots (o = _PIECE), where the
+    # closed form is not tried.
+    b = TripleFrictionPendulum()
+    p = b.params()
+    rng = np.random.default_rng(7)
+    used = declined = 0
+    for _ in range(300):
+        s = b.initial_state_plan()
+        u = np.zeros(2)
+        for _ in range(rng.integers(1, 8)):
+            u = u + rng.normal(0.0, 1.5, 2)
+            tfp._store(s, 0, tfp.series_solve(p, s, u[0], u[1]))
+        z = s[6:12].copy()
+        carry = 0
+        for i in range(3):
+            if z[2 * i] ** 2 + z[2 * i + 1] ** 2 >= 1.0 - 1e-9:
+                carry |= 1 << i
+                turn = rng.normal(0.0, 0.05)
+                c, sn = np.cos(turn), np.sin(turn)
+                zx, zy = z[2 * i], z[2 * i + 1]
+                z[2 * i], z[2 * i + 1] = c * zx - sn * zy, sn * zx + c * zy
+        if carry == 0:
+            continue
+        ux, uy = u + rng.normal(0.0, size, 2)
+        s[tfp._PIECE:tfp._PIECE + 12] = s[:12]
+        newton = np.array(tfp._series(p, s, tfp._PIECE, ux, uy, carry, z, 0.0))
+        ok, closed = tfp._carried_affine(p, s, ux, uy, carry, z)
+        assert np.array_equal(np.array(tfp._series(p, s, 0, ux, uy, carry, z, 0.0)),
+                              np.array(closed) if ok else newton)
+        if ok:
+            used += 1
+            assert closed[18] == newton[18] == carry  # carried slide, the others stick
+            np.testing.assert_allclose(np.array(closed)[:17], newton[:17], rtol=0, atol=1e-12)
+        else:
+            declined += 1
+            sliding, contact = int(newton[18]) & 7, int(newton[18]) >> 3
+            assert sliding & ~carry or contact
+    assert used > 50 and (declined > 20 or size < 1.0), (used, declined)
+
+
 def test_tangent_is_the_derivative_of_the_force():
     # The condensed tangent (Σ C_i)⁻¹ against central differences of the force from the same
     # committed state, at states along a random plan walk (sticking, sliding, restrainers).

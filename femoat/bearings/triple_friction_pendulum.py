@@ -436,12 +436,74 @@ def series_solve(p, s, ux, uy):
     return _series(p, s, 0, ux, uy, 0, s, 0.0)
 
 
+@njit(cache=True, inline="always")
+def _affine_part(p, i, s, carry, Z):
+    """Element ``i``'s scalar stiffness k_i [kip/in] and offset (c_x, c_y) [kip] in a carried
+    solve that is affine (:func:`_carried_affine`): f_i = k_i·d_i + c_i."""
+    b = _E0 + 4 * i
+    kr, q, uyi = p[b], p[b + 1], p[b + 2]
+    if (carry >> i) & 1:
+        return kr, q * Z[2 * i], q * Z[2 * i + 1]
+    return (kr + q / uyi, q * (s[6 + 2 * i] - s[2 * i] / uyi),
+            q * (s[7 + 2 * i] - s[2 * i + 1] / uyi))
+
+
+@njit(cache=True, inline="always")
+def _affine_element(p, i, s, carry, Z, fx, fy, k, cx, cy):
+    """Element ``i``'s displacement (dx, dy) [in] and hysteretic vector at the series force
+    (fx, fy) [kip] of an affine carried solve, and whether the affine form holds for it (an
+    element not carried sticks, no restrainer is reached, a carried z is not its radial
+    return's direction to the bit: :func:`_carried_affine`)."""
+    b = _E0 + 4 * i
+    uyi, gap = p[b + 2], p[b + 3]
+    dx, dy = (fx - cx) / k, (fy - cy) / k
+    tx = s[6 + 2 * i] + (dx - s[2 * i]) / uyi
+    ty = s[7 + 2 * i] + (dy - s[2 * i + 1]) / uyi
+    t = np.sqrt(tx * tx + ty * ty)
+    ok = dx * dx + dy * dy <= gap * gap
+    if (carry >> i) & 1:
+        if t > 1.0 and tx / t == Z[2 * i] and ty / t == Z[2 * i + 1]:
+            ok = False
+        return dx, dy, Z[2 * i], Z[2 * i + 1], ok
+    return dx, dy, tx, ty, ok and t <= 1.0
+
+
+@njit(cache=True, inline="always")
+def _carried_affine(p, s, ux, uy, carry, Z):
+    """(True, the series result) when a carried solve at (ux, uy) [in] (the elements of
+    ``carry`` sliding at their z given in ``Z``, from the committed state) is affine: each other
+    element sticks and no restrainer is reached. Then every element's force is k_i·d_i + c_i
+    with a scalar k_i (a carried element: W/L̄_i, c_i = μ_i·W·z_i; a sticking one: W/L̄_i +
+    μ_i·W/u_y,i, c_i = μ_i·W·(z_i − d_i/u_y,i) committed), so the one force is
+    F = (u + Σ c_i/k_i)/Σ 1/k_i and d_i = (F − c_i)/k_i: in closed form, the minimum that
+    Newton approaches (the energy is convex). (False, ...) when an element would slide
+    uncarried or touch its restrainer, or when a carried z equals its radial return's direction
+    to the bit (a step along a line: :func:`_element` then takes the free element's arithmetic,
+    so that a plan run on a line stays the one-axis run to the bit): the Newton solve decides."""
+    k1, c1x, c1y = _affine_part(p, 0, s, carry, Z)
+    k2, c2x, c2y = _affine_part(p, 1, s, carry, Z)
+    k3, c3x, c3y = _affine_part(p, 2, s, carry, Z)
+    kk = 1.0 / (1.0 / k1 + 1.0 / k2 + 1.0 / k3)
+    fx = kk * (ux + c1x / k1 + c2x / k2 + c3x / k3)
+    fy = kk * (uy + c1y / k1 + c2y / k2 + c3y / k3)
+    d1x, d1y, z1x, z1y, ok1 = _affine_element(p, 0, s, carry, Z, fx, fy, k1, c1x, c1y)
+    d2x, d2y, z2x, z2y, ok2 = _affine_element(p, 1, s, carry, Z, fx, fy, k2, c2x, c2y)
+    d3x, d3y, z3x, z3y, ok3 = _affine_element(p, 2, s, carry, Z, fx, fy, k3, c3x, c3y)
+    return ok1 and ok2 and ok3, (fx, fy, kk, 0.0, kk, d1x, d1y, d2x, d2y, d3x, d3y, z1x, z1y,
+                                 z2x, z2y, z3x, z3y, 1.0, float(carry))
+
+
 @njit(cache=True)
 def _series(p, s, o, ux, uy, carry, Z, tau):
     """:func:`series_solve` from the internal state held in ``s`` from slot ``o`` on (0: the
     committed state, _PIECE: the end of a path's previous piece); the elements whose bit is set
     in ``carry`` (bit i: element i) slide with their hysteretic vectors given in ``Z`` (6,)
-    (:func:`_element`; ``Z`` is not read when ``carry`` is 0)."""
+    (:func:`_element`; ``Z`` is not read when ``carry`` is 0). A carried solve whose answer is
+    affine is the closed form (:func:`_carried_affine`)."""
+    if carry != 0 and o == 0:
+        ok, a = _carried_affine(p, s, ux, uy, carry, Z)
+        if ok:
+            return a
     cr1, cr2, cr3 = carry & 1, (carry >> 1) & 1, (carry >> 2) & 1
     # predictor: each element goes on as it was (sliding on along z, sticking), the increment
     # split by those compliances
