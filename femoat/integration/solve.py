@@ -682,8 +682,10 @@ def _failure_message(packed, t, u, v, closed, integ, stalled=False):
             f"t = {t:.6g} s (all gaps open; base displacement {u[0]:.4g} in, velocity "
             f"{v[0]:.4g} in/s) even at the smallest step {integ.min_step:g} s: the building "
             "runs away faster than the runaway bounds of femoat.collapse end it (a negative "
-            "story stiffness?). Check the element parameters, or try "
-            "Integrator(method='newmark')."
+            "story stiffness?)"
+            + (", or the step's Newton solve of a plan bearing's friction state found no "
+               "solution" if integ.method == "ark5" else "")
+            + ". Check the element parameters, or try Integrator(method='newmark')."
         )
     return (
         f"The solver could not converge at t = {t:.6g} s ({where}; base displacement "

@@ -415,8 +415,11 @@ def pair_step(pair, hh, ag1, model, state, settings, work):
 @njit(cache=True, inline="always")
 def retry(t, hh, h, model, state, settings, work, rec):
     """After a step with no finite state: (the smaller step to try, False), or (``h``, True)
-    when the step is already the smallest."""
-    if hh <= settings.h_min:
+    when the step is already the smallest: the step asked (``h``) or taken (``hh``, which
+    t + h − t rounds: at t ≈ 10 s a step asked at h_min comes out up to 1e-8 longer, which a
+    test on ``hh`` alone never saw as the smallest, so a step that failed there was retried
+    forever and the run stalled)."""
+    if min(hh, h) <= settings.h_min:
         return h, True
     state.stats[S_REJECT_ERR] += 1
     return max(hh * SHRINK_MIN, settings.h_min), False
