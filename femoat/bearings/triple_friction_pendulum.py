@@ -685,6 +685,24 @@ _CARRY = _PIECE
 """Scratch slot: the bit mask of the elements a step carries (bit i: element i), written by
 :func:`plan_rate_active` at the step's start (no path is walked while a step carries them)."""
 
+_CONTACT = _PIECE + 1
+"""Scratch slot: the bit mask of the elements that touch their restrainer at the step's start,
+written by :func:`plan_rate_active`: the rate form's compliances hold it for the step (the
+restrainer's tangent jumps by k_0 at its gap; a rate that switched with each stage's d had no
+root in the stage solve when a carried element slid along its gap; where it changes the kink
+search lands the step, as for a sticking element)."""
+
+
+@njit(cache=True, inline="always")
+def _touching(p, s):
+    """The bit mask of the elements whose committed displacement is past their gap."""
+    contact = 0
+    for i in range(3):
+        dx, dy, gap = s[2 * i], s[2 * i + 1], p[_E0 + 4 * i + 3]
+        if dx * dx + dy * dy > gap * gap:
+            contact |= 1 << i
+    return contact
+
 
 @njit(cache=True, inline="always")
 def _on_rim(s, i):
@@ -734,10 +752,11 @@ def plan_rate_active(p, s, vx, vy):
             carry |= 1 << i
     z = s[6:12]
     ux, uy = s[0] + s[2] + s[4], s[1] + s[3] + s[5]
+    contact = _touching(p, s)
     # an element a hair inside its rim that reaches it sooner than SNAP at its sticking rate
     # slides (no step can land that close to its start): its z put on the rim
     r = _series(p, s, 0, ux, uy, carry, z, 0.0)
-    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
     for i in range(3):
         zx, zy = z[2 * i], z[2 * i + 1]
@@ -755,7 +774,7 @@ def plan_rate_active(p, s, vx, vy):
         return False
     for _ in range(3):
         r = _series(p, s, 0, ux, uy, 0, s, 0.0)
-        kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+        kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
         fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
         keep = 0
         for i in range(3):
@@ -770,6 +789,7 @@ def plan_rate_active(p, s, vx, vy):
     if carry == 0:
         return False
     s[_CARRY] = float(carry)
+    s[_CONTACT] = float(contact)
     return True
 
 
@@ -807,10 +827,11 @@ def _carried_solve(p, s, ux, uy, z):
 
 
 @njit(cache=True, inline="always")
-def _rate_compliance(p, i, s, r, carry, z):
+def _rate_compliance(p, i, s, r, carry, z, contact):
     """Element ``i``'s compliance (cxx, cxy, cyy) [in/kip] in the rate of the series state: the
     inverse of ∂f_i/∂d_i at its displacement in the series result ``r``: W/L̄_i·I plus its
-    restrainer's tangent, plus, for a carried element (its z moving by the sliding rule
+    restrainer's tangent if bit i of ``contact`` is set (the contact at the step's start,
+    :data:`_CONTACT`), plus, for a carried element (its z moving by the sliding rule
     ż = (I − z zᵀ)·ḋ/u_y,i), μ_i·W/u_y,i·(I − z zᵀ), and for any other element its sticking
     stiffness μ_i·W/u_y,i·I (an element that is not carried sticks; where it starts to slide
     the kink search lands the step, and the rate does not switch inside a stage's solve)."""
@@ -823,17 +844,25 @@ def _rate_compliance(p, i, s, r, carry, z):
         kxx -= g * zx * zx
         kxy -= g * zx * zy
         kyy -= g * zy * zy
-    kxx, kxy, kyy = _restrained(ks, gap, r[5 + 2 * i], r[6 + 2 * i], kxx, kxy, kyy)
+    if (contact >> i) & 1:  # its restrainer's tangent at the stage's d, held on for the step
+        dx, dy = r[5 + 2 * i], r[6 + 2 * i]
+        rr = np.sqrt(dx * dx + dy * dy)
+        ex, ey = dx / rr, dy / rr
+        a = ks * gap / rr
+        kxx += ks - a + a * ex * ex
+        kxy += a * ex * ey
+        kyy += ks - a + a * ey * ey
     return _inverse(kxx, kxy, kyy)
 
 
 @njit(cache=True)
-def _series_rate(p, s, r, carry, z):
+def _series_rate(p, s, r, carry, z, contact):
     """(S⁻¹ as (kxx, kxy, kyy) [kip/in], the elements' compliances C_i [in/kip]) at the series
     result ``r``, the carried mask ``carry`` and their z: Ḟ = S⁻¹·v, S = Σ_i C_i, and
     ḋ_i = C_i·Ḟ (:func:`_rate_compliance`)."""
-    comp = (_rate_compliance(p, 0, s, r, carry, z), _rate_compliance(p, 1, s, r, carry, z),
-            _rate_compliance(p, 2, s, r, carry, z))
+    comp = (_rate_compliance(p, 0, s, r, carry, z, contact),
+            _rate_compliance(p, 1, s, r, carry, z, contact),
+            _rate_compliance(p, 2, s, r, carry, z, contact))
     kxx, kxy, kyy = _inverse(comp[0][0] + comp[1][0] + comp[2][0],
                              comp[0][1] + comp[1][1] + comp[2][1],
                              comp[0][2] + comp[1][2] + comp[2][2])
@@ -859,7 +888,7 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
         g[a] = 0.0
         for b in range(N_RATE_PLAN):
             J[a, b] = 0.0
-    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z)
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, int(s[_CONTACT]))
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy  # Ḟ
     for i in range(3):
         if not (carry >> i) & 1:
@@ -908,7 +937,7 @@ def _loading(p, s, ux, uy, vx, vy, z, carry, which):
     """(min over the carried elements of z_i·Ḟ, its element) at (ux, uy) [in], (vx, vy) [in/s]
     and the carried z (``which`` >= 0: that element's z_i·Ḟ)."""
     r = _series(p, s, 0, ux, uy, carry, z, 0.0)
-    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z)
+    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z, int(s[_CONTACT]))
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
     least, at = np.inf, -1
     for i in range(3):
