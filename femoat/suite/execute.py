@@ -302,7 +302,23 @@ def _on_client(suite, out, tasks, progress, summary, scheduler, scheduler_file, 
                                           "stored: rerun to retry it\n")
                     continue
             _finish(suite, out, task, rows, progress)
+    except KeyboardInterrupt:
+        _quiet_distributed()
+        raise
     finally:
         for f in futures:
             f.cancel()
         client.close()
+
+
+def _quiet_distributed():
+    """Silence every ``distributed`` logger of this process (a local cluster's scheduler runs
+    here): on Ctrl-C the futures are cancelled while the workers die with the same signal, and
+    the scheduler logs each cancel it can no longer send as CRITICAL, with a traceback (seen on
+    a loaded machine); the CLI's one line says what happened."""
+    import logging
+
+    names = ["distributed"] + [n for n in logging.root.manager.loggerDict
+                               if n.startswith("distributed.")]
+    for name in names:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
