@@ -246,6 +246,34 @@ def test_a_step_that_fails_at_the_smallest_step_is_not_retried():
     assert not failed and h == 1e-6 * dp5.SHRINK_MIN
 
 
+def test_the_stage_newton_update_solves_the_coupled_block_and_passes_the_rest_through():
+    # (I − hγJ)·Δ = r with J zero in the rows and columns of the states a step does not carry
+    # (the triple pendulum's sticking elements): the decoupled states' Δ is their residual
+    # z − w − hγ·g exactly (an identity row), the others solve their own block. Expected: the
+    # whole 6 × 6 system solved by numpy (LAPACK), to round-off of its condition (~10 here).
+    rng = np.random.default_rng(7)
+    hg = 0.0041
+    for coupled in ((0, 1), (2, 3, 4, 5), (0, 1, 4, 5), tuple(range(6)), (1,)):
+        J = np.zeros((6, 6))
+        for i in coupled:
+            for j in coupled:
+                J[i, j] = rng.normal(scale=300.0)
+        z, w, g = rng.normal(size=6), rng.normal(size=6), rng.normal(size=6)
+        for q in set(range(6)) - set(coupled):
+            g[q] = 0.0  # (not carried: no rate)
+        r = z - w - hg * g
+        expected = np.linalg.solve(np.eye(6) - hg * J, r)
+        z_new, g_out, A = z.copy(), g.copy(), np.zeros((6, 7))
+        assert ark5._newton_update.py_func(6, hg, z_new, w, g_out, J, A)
+        np.testing.assert_allclose(g_out, expected, rtol=1e-12, atol=1e-14)
+        np.testing.assert_array_equal(z_new, z - g_out)
+        for q in set(range(6)) - set(coupled):
+            assert g_out[q] == r[q]
+    J = np.zeros((6, 6))
+    J[0, 0] = J[1, 1] = 1.0 / hg  # I − hγJ singular in the coupled block: the stage fails
+    assert not ark5._newton_update.py_func(6, hg, z.copy(), w, g.copy(), J, np.zeros((6, 7)))
+
+
 def test_the_triple_pendulum_slides_along_its_restrainer():
     # Far-field pair 12 at 20°, twice the bidirectional study's MCE scale (time x 0.5), drives
     # the default triple pendulum under the paper building in a 30 in moat through 34.3 in of
