@@ -138,6 +138,12 @@ NEWTON_ACCEPT = 1e-11
 """... or, after MAX_NEWTON iterations, at most this (round-off in a very stiff stage); else the
 step fails and is retried shorter."""
 MAX_NEWTON = 20
+NEWTON_QUADRATIC = 1e-6
+"""A state wider than 2 (the triple pendulum's, whose rate costs a series solve) is also solved
+when its last correction is at most this, smaller than the one before, and the quadratic model
+of Newton's convergence puts the next correction below NEWTON_TOL: it saves the evaluation
+that only confirms it. The 2-wide states keep the last-correction test (their runs bit for
+bit)."""
 
 
 # ---- the carried friction states ------------------------------------------------------------
@@ -196,20 +202,35 @@ def _rates_vanish(n_stages, model, state, work):
 
 
 @njit(cache=True, inline="always")
-def _stage_rates(st, model, state, work):
-    """g_s = g(Z_s; U_s, V_s) of each carried state into ``work.kz[st]`` (:func:`_rates_at`)."""
-    _rates_at(st, work.b_rate, model.b_kind, model.b_P, state.b_S, model.b_dofs, work.kz,
+def _stage_rates(st, hh, model, state, work):
+    """g_s of each carried state into ``work.kz[st]`` (:func:`_rates_at`)."""
+    _rates_at(st, hh, work.b_rate, model.b_kind, model.b_P, state.b_S, model.b_dofs, work.kz,
               work.bz, work.u, work.v, work.rq)
 
 
 @njit(cache=True)
-def _rates_at(st, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
+def _rates_at(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
     """:func:`_stage_rates` on the arrays it reads (its own compiled function: the coupled step
-    stays small enough for LLVM to keep its loops in registers)."""
-    _, g, _, _, J, _ = rate_views(rq)
+    stays small enough for LLVM to keep its loops in registers): g_s = g(Z_s; U_s, V_s)
+    evaluated, or, for a state wider than 2 at an implicit stage (st ≥ 1), deduced from the
+    stage's solved equation, g_s = (Z_s − w_s)/(h·γ) (ARKODE's "deduce implicit RHS"): the
+    triple pendulum's rate costs a series solve, and the deduced value is the evaluated one to
+    the stage's Newton tolerance over h·γ, which the next stages and the error estimate
+    multiply by h again. The 2-wide states (pendulum, lead-rubber) are evaluated: their runs
+    stay bit for bit."""
+    z0, g, _, _, J, _ = rate_views(rq)
+    hg = hh * ARK_AI[st, st]
     for e in range(b_dofs.shape[0]):
         nq = b_rate[e]
         if nq == 0:
+            continue
+        if st > 0 and nq != 2:
+            bearing_plan_rate_state(b_kind[e], b_P[e], b_S[e], z0)
+            for q in range(nq):
+                acc = 0.0
+                for j in range(st):
+                    acc += ARK_AI[st, j] * kz[j, e, q]
+                kz[st, e, q] = (bz[e, q] - (z0[q] + hh * acc)) / hg
             continue
         ix, iy = b_dofs[e, 0], b_dofs[e, 1]
         bearing_plan_rate(b_kind[e], b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], bz[e], g, J)
@@ -227,7 +248,8 @@ def _solve_stage_states(st, hh, model, state, work):
 @njit(cache=True)
 def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
     """Each carried state at stage ``st``: Z = w + h·γ·g(Z; U_s, V_s), w = z_n + h·Σ_{j<s}
-    a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``bz``). False when
+    a^I_sj·g_j, by Newton's method from the previous stage's Z (into ``bz``; converged by
+    :data:`NEWTON_TOL`, or for a state wider than 2 also :data:`NEWTON_QUADRATIC`). False when
     one does not converge (the step is then retried shorter)."""
     hg = hh * ARK_AI[st, st]
     z0, g, w, _, J, A = rate_views(rq)
@@ -246,6 +268,7 @@ def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
         ux, uy, vx, vy = u[ix], u[iy], v[ix], v[iy]
         z = bz[e]
         step = np.inf
+        done = False
         for _ in range(MAX_NEWTON):
             bearing_plan_rate(kind, p, s, ux, uy, vx, vy, z, g, J)
             if nq == 2:  # the pendulum's and the lead-rubber bearing's 2×2 solve, in closed form
@@ -261,15 +284,21 @@ def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
                 z[0] -= dx
                 z[1] -= dy
                 step = abs(dx) + abs(dy)
+                done = step <= NEWTON_TOL
             else:
                 if not _newton_update(nq, hg, z, w, g, J, A):
                     return False
-                step = 0.0
+                last, step = step, 0.0
                 for q in range(nq):
                     step += abs(g[q])  # (the update, returned in g)
-            if step <= NEWTON_TOL:
+                # converged when the quadratic model's next correction, K·step² with
+                # K = step/last², is below the tolerance (what the last-correction test would
+                # have spent one more rate evaluation to see)
+                done = step <= NEWTON_TOL or (step <= NEWTON_QUADRATIC and step < last
+                                              and step * step * step <= NEWTON_TOL * last * last)
+            if done:
                 break
-        if not step <= NEWTON_ACCEPT:
+        if not (done or step <= NEWTON_ACCEPT):
             return False
     return True
 
@@ -407,7 +436,7 @@ def coupled_step(hh, ag1, model, state, settings, work):
     for i in range(nb, n):
         work.u[i] = u0[i]
         work.v[i] = v0[i]
-    _stage_rates(0, model, state, work)
+    _stage_rates(0, hh, model, state, work)
     ag = work.ag_stage
     for s in range(1, N_STAGES + 1):
         last = s == N_STAGES
@@ -430,7 +459,7 @@ def coupled_step(hh, ag1, model, state, settings, work):
                 ka[s, i] = acc
                 kv[s, i] = work.v[i]
         if not last:
-            _stage_rates(s, model, state, work)
+            _stage_rates(s, hh, model, state, work)
     dp5.walls_exact(hh, ag0, ag1, nb, model, state, work)
     dp5.stage_energy(ARK_B, ARK_C, hh, ag0, ag1, nb, model, work)
     if not dp5.open_end(model, work):
