@@ -755,7 +755,7 @@ def plan_rate_active(p, s, vx, vy):
     contact = _touching(p, s)
     # an element a hair inside its rim that reaches it sooner than SNAP at its sticking rate
     # slides (no step can land that close to its start): its z put on the rim
-    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
+    r = _contact_series(p, s, ux, uy, carry, z, contact)
     kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
     for i in range(3):
@@ -773,7 +773,7 @@ def plan_rate_active(p, s, vx, vy):
     if carry == 0:
         return False
     for _ in range(3):
-        r = _series(p, s, 0, ux, uy, 0, s, 0.0)
+        r = _contact_series(p, s, ux, uy, 0, s, contact)
         kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
         fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
         keep = 0
@@ -855,6 +855,21 @@ def _rate_compliance(p, i, s, r, carry, z, contact):
     return _inverse(kxx, kxy, kyy)
 
 
+_NO_SERIES = (0.0,) * 19
+"""A series result's shape with nothing in it (:func:`_contact_series`)."""
+
+
+@njit(cache=True, inline="always")
+def _contact_series(p, s, ux, uy, carry, Z, contact):
+    """The series result at (ux, uy) [in] (carrying ``carry`` at ``Z``) that :func:`_series_rate`
+    reads, which is only the displacements of the elements in ``contact`` (their restrainers'
+    tangents): without contact the rate's compliances depend on z alone and no series solve is
+    made (``_NO_SERIES``)."""
+    if contact == 0:
+        return _NO_SERIES
+    return _series(p, s, 0, ux, uy, carry, Z, 0.0)
+
+
 @njit(cache=True)
 def _series_rate(p, s, r, carry, z, contact):
     """(S⁻¹ as (kxx, kxy, kyy) [kip/in], the elements' compliances C_i [in/kip]) at the series
@@ -882,13 +897,13 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     |z_i| = 1) g is exactly zero. (Every flagged element is carried here: the release of an
     element whose stage moved back is the force's and the commit's, as the single pendulum's;
     a rate that switched with it would stall the stage's Newton.)"""
-    carry = int(s[_CARRY])
-    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
+    carry, contact = int(s[_CARRY]), int(s[_CONTACT])
+    r = _contact_series(p, s, ux, uy, carry, z, contact)
     for a in range(N_RATE_PLAN):
         g[a] = 0.0
         for b in range(N_RATE_PLAN):
             J[a, b] = 0.0
-    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, int(s[_CONTACT]))
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy  # Ḟ
     for i in range(3):
         if not (carry >> i) & 1:
@@ -936,8 +951,9 @@ TURN_PROBE = 1e-7
 def _loading(p, s, ux, uy, vx, vy, z, carry, which):
     """(min over the carried elements of z_i·Ḟ, its element) at (ux, uy) [in], (vx, vy) [in/s]
     and the carried z (``which`` >= 0: that element's z_i·Ḟ)."""
-    r = _series(p, s, 0, ux, uy, carry, z, 0.0)
-    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z, int(s[_CONTACT]))
+    contact = int(s[_CONTACT])
+    r = _contact_series(p, s, ux, uy, carry, z, contact)
+    kxx, kxy, kyy, _ = _series_rate(p, s, r, carry, z, contact)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy
     least, at = np.inf, -1
     for i in range(3):
