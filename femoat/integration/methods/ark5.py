@@ -339,48 +339,40 @@ def _newton_update(nq, hg, z, w, g, J, A):
         det = a00 * a11 - a01 * a10
         if not (np.isfinite(det) and det != 0.0):
             return False
+        A[0, m] = (a11 * rx - a01 * ry) / det
+        A[1, m] = (a00 * ry - a10 * rx) / det
+    else:
+        r = 0
         for i in range(nq):
-            if i == ia:
-                g[i] = (a11 * rx - a01 * ry) / det
-            elif i == ib:
-                g[i] = (a00 * ry - a10 * rx) / det
-            else:
-                g[i] = z[i] - w[i] - hg * g[i]
-            if not np.isfinite(g[i]):
+            if not (coupled >> i) & 1:
+                continue
+            c = 0
+            for j in range(nq):
+                if (coupled >> j) & 1:
+                    A[r, c] = (1.0 if i == j else 0.0) - hg * J[i, j]
+                    c += 1
+            A[r, m] = z[i] - w[i] - hg * g[i]
+            r += 1
+        for c in range(m):
+            piv = c
+            for i in range(c + 1, m):
+                if abs(A[i, c]) > abs(A[piv, c]):
+                    piv = i
+            if not (np.isfinite(A[piv, c]) and A[piv, c] != 0.0):
                 return False
-            z[i] -= g[i]
-        return True
-    r = 0
-    for i in range(nq):
-        if not (coupled >> i) & 1:
-            continue
-        c = 0
-        for j in range(nq):
-            if (coupled >> j) & 1:
-                A[r, c] = (1.0 if i == j else 0.0) - hg * J[i, j]
-                c += 1
-        A[r, m] = z[i] - w[i] - hg * g[i]
-        r += 1
-    for c in range(m):
-        piv = c
-        for i in range(c + 1, m):
-            if abs(A[i, c]) > abs(A[piv, c]):
-                piv = i
-        if not (np.isfinite(A[piv, c]) and A[piv, c] != 0.0):
-            return False
-        if piv != c:
-            for j in range(m + 1):
-                A[c, j], A[piv, j] = A[piv, j], A[c, j]
-        for i in range(c + 1, m):
-            f = A[i, c] / A[c, c]
-            if f != 0.0:
-                for j in range(c, m + 1):
-                    A[i, j] -= f * A[c, j]
-    for i in range(m - 1, -1, -1):  # the solution into A's last column
-        acc = A[i, m]
-        for j in range(i + 1, m):
-            acc -= A[i, j] * A[j, m]
-        A[i, m] = acc / A[i, i]
+            if piv != c:
+                for j in range(m + 1):
+                    A[c, j], A[piv, j] = A[piv, j], A[c, j]
+            for i in range(c + 1, m):
+                f = A[i, c] / A[c, c]
+                if f != 0.0:
+                    for j in range(c, m + 1):
+                        A[i, j] -= f * A[c, j]
+        for i in range(m - 1, -1, -1):  # the solution into A's last column
+            acc = A[i, m]
+            for j in range(i + 1, m):
+                acc -= A[i, j] * A[j, m]
+            A[i, m] = acc / A[i, i]
     r = 0
     for i in range(nq):
         if (coupled >> i) & 1:
