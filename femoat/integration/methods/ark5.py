@@ -140,7 +140,8 @@ step fails and is retried shorter."""
 MAX_NEWTON = 20
 NEWTON_QUADRATIC = 1e-6
 """A state wider than 2 (the triple pendulum's, whose rate costs a series solve) is also solved
-when its last correction is at most this, smaller than the one before, and the quadratic model
+when its last correction is at most this, smaller than the one before (a second iteration or
+later: the model needs two corrections), and the quadratic model
 of Newton's convergence puts the next correction below NEWTON_TOL: it saves the evaluation
 that only confirms it. The 2-wide states keep the last-correction test (their runs bit for
 bit)."""
@@ -294,7 +295,7 @@ def _stage_states(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
                 # converged when the quadratic model's next correction, K·step² with
                 # K = step/last², is below the tolerance (what the last-correction test would
                 # have spent one more rate evaluation to see)
-                done = step <= NEWTON_TOL or (step <= NEWTON_QUADRATIC and step < last
+                done = step <= NEWTON_TOL or (step <= NEWTON_QUADRATIC and step < last < np.inf
                                               and step * step * step <= NEWTON_TOL * last * last)
             if done:
                 break
