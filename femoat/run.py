@@ -137,7 +137,8 @@ follows each step's path: first order in an explicit step's stages, so the impli
 def plan_method(model):
     """The default method of a plan run of ``model`` (a :class:`~femoat.plan.PlanModel`):
     :data:`PLAN_METHOD` if its isolator kind declares a rate form that covers it (not a
-    triple pendulum's velocity-dependent friction), else :data:`PLAN_METHOD_PATH`."""
+    triple pendulum whose velocity-dependent friction leaves some surface at μ_fast = μ), else
+    :data:`PLAN_METHOD_PATH`."""
     from femoat.bearings import registry
 
     iso = model.building.isolator

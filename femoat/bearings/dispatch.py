@@ -54,6 +54,7 @@ from femoat.bearings.triple_friction_pendulum import (
     plan_rate_commit as _plan_rate_commit_2,
     plan_rate_turn as _plan_rate_turn_2,
     plan_rate_branch as _plan_rate_branch_2,
+    plan_rate_fsal as _plan_rate_fsal_2,
 )
 from femoat.bearings.rate_form import turn_along as _turn_along
 from femoat.compilation.jit import njit
@@ -259,4 +260,16 @@ def bearing_plan_rate_branch(kind, p, s, ux, uy, z):
         return _plan_branch_1(p, s, ux, uy)
     if kind == 2:
         return _plan_rate_branch_2(p, s, ux, uy, z)
+    return -1
+
+
+@njit(cache=True)
+def bearing_plan_rate_fsal(kind, p, s):
+    """:func:`plan_rate_fsal` of bearing kind ``kind``."""
+    if kind == 0:
+        return -1
+    if kind == 1:
+        return -1
+    if kind == 2:
+        return _plan_rate_fsal_2(p, s)
     return -1

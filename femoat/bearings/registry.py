@@ -57,6 +57,7 @@ RATE_KERNELS = {
     "bearing_plan_rate_turn": ("plan_rate_turn", "p, s, ux, uy, vx, vy, ax, ay, z, g, J",
                                "(np.nan, np.nan)"),
     "bearing_plan_rate_branch": ("plan_rate_branch", "p, s, ux, uy, z", "-1"),
+    "bearing_plan_rate_fsal": ("plan_rate_fsal", "p, s", "-1"),
 }
 """The rate form a kind may declare (all five or none; :mod:`femoat.bearings`' docstring): its
 friction state as an ODE for the coupled-friction step (:mod:`femoat.integration.methods.ark5`).
@@ -66,17 +67,25 @@ committed one and returns its width, ``plan_rate`` writes the rate ż = g(z; u, 
 ∂g/∂z into ``J``; ``plan_rate_turn`` returns (r, ṙ), the loading measure whose crossing of zero
 downwards unloads the bearing (the pendulum's z·v) and its rate at the acceleration (ax, ay)
 (``g``, ``J`` scratch); ``plan_rate_branch`` the branch at a trial point of a step that carries
-z, with z given (the kink search follows z along the step). A kind without it answers ``plan_rate_active`` False (its plan trials follow the
-step's path)."""
+z, with z given (the kink search follows z along the step); ``plan_rate_fsal`` (at a step's start,
+after ``plan_rate_active``) −1, or, for a rate so stiff that its value at the committed state
+is off the step's own by its transient (a state a step's stage error off the slow manifold
+that the rate relaxes to), a code of the rate's regime at this step (which states are carried,
+which restrainers touch): the step then takes the last accepted step's end-stage rate as its
+first stage's where that step ended here in the same regime (first same as last), and the kink
+search follows z on the step's own stage rates. A kind without it answers
+``plan_rate_active`` False (its plan trials follow the step's path)."""
 
 RATE_DEFAULTS = {
     "bearing_plan_rate_turn": ("_plan_rate_{k}(p, s, ux, uy, vx, vy, z, g, J)",
                                "return _turn_along(z, g, vx, vy, ax, ay)"),
     "bearing_plan_rate_branch": (None, "return _plan_branch_{k}(p, s, ux, uy)"),
+    "bearing_plan_rate_fsal": (None, "return -1"),
 }
-"""What the dispatcher does for a kind with a rate form that leaves these two out: a bearing
-whose z is one sliding direction, r = z·v with ṙ = g·v + z·a (``rate_form.turn_along``), and
-the branch of ``plan_branch`` (z's value does not change it while z is carried)."""
+"""What the dispatcher does for a kind with a rate form that leaves these out: a bearing
+whose z is one sliding direction, r = z·v with ṙ = g·v + z·a (``rate_form.turn_along``), the
+branch of ``plan_branch`` (z's value does not change it while z is carried), and a rate that
+each step evaluates at its start (−1)."""
 
 RATE_PYTHON_NAMES = ("N_RATE_PLAN",)
 """The names a kind with a rate form provides besides its kernels: the width of its state."""

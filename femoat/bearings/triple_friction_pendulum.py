@@ -201,10 +201,21 @@ friction law at its element's whole deformation rate |Δd_i|/Δt from its previo
 iteration. It needs the step's duration: the plan kernels are given it, the one-axis kernels
 read it from the last entry of their state row, where the loop writes the duration of the step it
 is solving (:data:`femoat.structure.materials.kernels.DURATION`; the one-axis kernels are the
-plan element at (u, 0) with that duration, to the bit: tested). A velocity-dependent bearing runs
-on Newmark's step, in 1D and in plan (the rate form covers constant friction only:
-:func:`rate_form_covers`; the explicit pairs and ark5 refuse it: their stages would take the
-return over their offsets).
+plan element at (u, 0) with that duration, to the bit: tested). On one axis a velocity-dependent
+bearing runs on Newmark's step (the explicit pairs refuse it: their stages would take the return
+over their offsets).
+
+In plan it runs on the coupled-friction step (ark5, the plan default) by the same model's rate
+form (:func:`_viscous_rate`): each element within :data:`CARRY_INSIDE` of its rim or beyond
+carries z_i = Q_i/(μ_i·W) as a state, sliding or not, with ż_i = (ḋ_i − w_i(|z_i|)·n_i)/u_y,i,
+the slip rate w_i the friction law's inverse (0 inside the disk, where the rate is the sticking
+one; so an element that unloads has a continuous rate and no turn is landed on), and ḋ_i from
+the series' one force. The continuous model is the backward-Euler return's: Newmark's path form
+and ark5 converge to the same runs (tested). Where the law flattens the rate is stiff (the
+eigenvalue −w′(|z|)/u_y grows as e^(a·fact·w)), which the implicit part of the step absorbs;
+beyond a·fact·w = :data:`RATE_CAP` the inverse goes on along its tangent (the friction within
+1e-13 of μ_fast). It needs μ_fast > μ_slow on all three surfaces (:func:`rate_form_covers`:
+a bearing with some equal pairs takes Newmark).
 """
 
 from dataclasses import dataclass
@@ -269,9 +280,11 @@ def _element(p, i, s, o, dx, dy, carried, Z, tau):
     tx = s[o + 6 + 2 * i] + (dx - s[o + 2 * i]) / uyi
     ty = s[o + 7 + 2 * i] + (dy - s[o + 2 * i + 1]) / uyi
     t = np.sqrt(tx * tx + ty * ty)
-    if carried and not (t > 1.0 and tx / t == Z[2 * i] and ty / t == Z[2 * i + 1]):
+    if carried and not (t > 1.0 and p[_RATE + 2 * i + 1] == 0.0 and tx / t == Z[2 * i]
+                        and ty / t == Z[2 * i + 1]):
         # (a carried z equal to the radial return's, as on a straight step along z, is the
-        # free element's arithmetic: a plan run along one axis is the one-axis run to the bit)
+        # free element's arithmetic: a plan run along one axis is the one-axis run to the bit;
+        # constant friction only: a velocity-dependent carried z has its own magnitude)
         zx, zy = Z[2 * i], Z[2 * i + 1]
         kxx = kr
         kxy = 0.0
@@ -462,7 +475,8 @@ def _affine_element(p, i, s, carry, Z, fx, fy, k, cx, cy):
     t = np.sqrt(tx * tx + ty * ty)
     ok = dx * dx + dy * dy <= gap * gap
     if (carry >> i) & 1:
-        if t > 1.0 and tx / t == Z[2 * i] and ty / t == Z[2 * i + 1]:
+        if t > 1.0 and p[_RATE + 2 * i + 1] == 0.0 and tx / t == Z[2 * i] and \
+                ty / t == Z[2 * i + 1]:
             ok = False
         return dx, dy, Z[2 * i], Z[2 * i + 1], ok
     return dx, dy, tx, ty, ok and t <= 1.0
@@ -744,8 +758,8 @@ def plan_rate_active(p, s, vx, vy):
     inner one sticks (the inner element's force turned away from its own slip), and a step
     that left that to the path form was first order in the step (benchmarks/README.md, issue
     28). An element within :data:`SNAP` of its rim counts as on it (its z put there in ``s``)."""
-    if p[_RATE + 1] > 0.0:  # (velocity-dependent: the path form)
-        return False
+    if p[_RATE + 1] > 0.0:
+        return _viscous_active(p, s)
     carry = 0
     for i in range(3):
         if _on_rim(s, i):
@@ -793,6 +807,150 @@ def plan_rate_active(p, s, vx, vy):
     return True
 
 
+RATE_CAP = 30.0
+"""[-] Velocity-dependent friction in the rate form: beyond the slip rate w at which a·fact·w
+reaches this, the friction law's inverse w(|z|) (:func:`_slip_rate`) goes on along its tangent
+there. The friction is then within e^-30 (1e-13) of μ_fast: the exact inverse would need |z|
+to resolve μ_fast − μ(w) ~ e^(−a·fact·w), below double precision's 1e-16 at a·fact·w ≈ 36
+(w = 31 in/s on an outer surface of a = 1 s/in), where w(|z|) overflows."""
+
+CARRY_INSIDE = 1e-4
+"""[-] Velocity-dependent friction: an element whose |z| is within this of its rim is carried
+(inside it the viscoplastic rate is the sticking one, exact: carrying it costs a wider stage
+solve, never accuracy), so that the onset of sliding is landed on only from further inside
+(the kink search resolves no switch closer to a step's start than 2^-24 of it: at
+u_y = 0.01 in, 1e-6 in inside the rim)."""
+
+
+@njit(cache=True, inline="always")
+def _slip_rate(p, i, rho):
+    """Element ``i``'s slip rate w [in/s] and dw/d|z| at |z| = ``rho`` [-] (its friction force over
+    μ_slow·W), the inverse of the friction law μ_i(fact_i·w)·W = |z|·μ_i·W:
+    w = −ln(1 − (|z| − 1)/(r − 1))/b, r = μ_fast/μ_slow, b = a·fact_i; 0 inside the disk
+    (|z| ≤ 1: sticking); beyond :data:`RATE_CAP` along its tangent."""
+    if rho <= 1.0:
+        return 0.0, 0.0
+    q, qf, b = p[_E0 + 4 * i + 1], p[_RATE + 2 * i], p[_RATE + 2 * i + 1]
+    rm1 = (qf - q) / q
+    x = (rho - 1.0) / rm1
+    tail = np.exp(-RATE_CAP)
+    if x < 1.0 - tail:
+        return -np.log1p(-x) / b, 1.0 / (b * rm1 * (1.0 - x))
+    return (RATE_CAP + (x - (1.0 - tail)) / tail) / b, 1.0 / (b * rm1 * tail)
+
+
+@njit(cache=True)
+def _viscous_active(p, s):
+    """:func:`plan_rate_active` for velocity-dependent friction: carry each element within
+    :data:`CARRY_INSIDE` of its rim or beyond it, loading or not (a viscoplastic element
+    unloads smoothly: no turn to land on); True when one is."""
+    carry = 0
+    for i in range(3):
+        zx, zy = s[6 + 2 * i], s[7 + 2 * i]
+        if np.sqrt(zx * zx + zy * zy) >= 1.0 - CARRY_INSIDE:
+            carry |= 1 << i
+    if carry == 0:
+        return False
+    s[_CARRY] = float(carry)
+    s[_CONTACT] = float(_touching(p, s))
+    return True
+
+
+@njit(cache=True, inline="always")
+def _slip(p, i, z):
+    """Element ``i``'s slip-rate vector m = w·n (n = z_i/|z_i|) [in/s] and the coefficients of
+    ∂m/∂z_i = w′·n nᵀ + (w/|z_i|)·(I − n nᵀ): (mx, my, w′, w/|z_i|, nx, ny)."""
+    zx, zy = z[2 * i], z[2 * i + 1]
+    rho = np.sqrt(zx * zx + zy * zy)
+    w, wp = _slip_rate(p, i, rho)
+    if w == 0.0 and wp == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    nx, ny = zx / rho, zy / rho
+    return w * nx, w * ny, wp, w / rho, nx, ny
+
+
+@njit(cache=True)
+def _viscous_rate(p, s, ux, uy, vx, vy, z, g, J):
+    """:func:`plan_rate` for velocity-dependent friction, each carried element an
+    elastic-viscoplastic friction disk (module docstring): its friction force Q_i = μ_i·W·z_i
+    moves by Q̇_i = k_e,i·(ḋ_i − w_i·n_i), k_e,i = μ_i·W/u_y,i, at the slip rate w_i(|z_i|) that
+    the friction law gives (:func:`_slip_rate`), so ż_i = (ḋ_i − m_i)/u_y,i, m_i = w_i·n_i. With
+    each element's sticking compliance C_i (:func:`_rate_compliance` of no carried element: its
+    spring, restrainer and k_e), F = W·d_i/L̄_i + Q_i (+ restrainer) gives
+    ḋ_i = C_i·(Ḟ + k_e,i·m_i), and Σ ḋ_i = v gives Ḟ = S⁻¹·(v − Σ_j k_e,j·C_j·m_j), S = Σ C_i.
+    The Jacobian is exact with the compliances held (the restrainers' tangents taken as
+    constant, as in :func:`plan_rate`): ∂g_i/∂z_j = (C_i·∂Ḟ/∂z_j + δ_ij·(k_e,i·C_i − I)·M_j)/u_y,i,
+    ∂Ḟ/∂z_j = −S⁻¹·k_e,j·C_j·M_j, M_j = ∂m_j/∂z_j. Stiff where the law flattens (its eigenvalue
+    −w′/u_y grows as e^(a·fact·w)): the implicit part of the step."""
+    carry, contact = int(s[_CARRY]), int(s[_CONTACT])
+    r = _contact_series(p, s, ux, uy, carry, z, contact)
+    for a in range(N_RATE_PLAN):
+        g[a] = 0.0
+        for b in range(N_RATE_PLAN):
+            J[a, b] = 0.0
+    kxx, kxy, kyy, comp = _series_rate(p, s, r, 0, z, contact)
+    slips = (_slip(p, 0, z) if carry & 1 else (0.0,) * 6,
+             _slip(p, 1, z) if (carry >> 1) & 1 else (0.0,) * 6,
+             _slip(p, 2, z) if (carry >> 2) & 1 else (0.0,) * 6)
+    bx, by = vx, vy
+    for j in range(3):
+        mj, cj = slips[j], comp[j]
+        kj = p[_E0 + 4 * j + 1] / p[_E0 + 4 * j + 2]
+        bx -= kj * (cj[0] * mj[0] + cj[1] * mj[1])
+        by -= kj * (cj[1] * mj[0] + cj[2] * mj[1])
+    fx, fy = kxx * bx + kxy * by, kxy * bx + kyy * by  # Ḟ
+    for i in range(3):
+        if not (carry >> i) & 1:
+            continue
+        mi, ci = slips[i], comp[i]
+        uyi = p[_E0 + 4 * i + 2]
+        ki = p[_E0 + 4 * i + 1] / uyi
+        hx, hy = fx + ki * mi[0], fy + ki * mi[1]
+        g[2 * i] = (ci[0] * hx + ci[1] * hy - mi[0]) / uyi
+        g[2 * i + 1] = (ci[1] * hx + ci[2] * hy - mi[1]) / uyi
+    for j in range(3):
+        mj, cj = slips[j], comp[j]
+        if not (carry >> j) & 1 or (mj[2] == 0.0 and mj[3] == 0.0):
+            continue  # (inside its disk: no slip, its z enters no rate)
+        kj = p[_E0 + 4 * j + 1] / p[_E0 + 4 * j + 2]
+        wp, wr, nx, ny = mj[2], mj[3], mj[4], mj[5]
+        for k in range(2):
+            nk = nx if k == 0 else ny
+            dmx = wp * nx * nk + wr * ((1.0 if k == 0 else 0.0) - nx * nk)  # M_j·e_k
+            dmy = wp * ny * nk + wr * ((1.0 if k == 1 else 0.0) - ny * nk)
+            cx = kj * (cj[0] * dmx + cj[1] * dmy)
+            cy = kj * (cj[1] * dmx + cj[2] * dmy)
+            dfx, dfy = -(kxx * cx + kxy * cy), -(kxy * cx + kyy * cy)  # ∂Ḟ
+            for i in range(3):
+                if not (carry >> i) & 1:
+                    continue
+                ci = comp[i]
+                uyi = p[_E0 + 4 * i + 2]
+                ex, ey = ci[0] * dfx + ci[1] * dfy, ci[1] * dfx + ci[2] * dfy  # ∂ḋ_i
+                if i == j:
+                    ex += cx - dmx
+                    ey += cy - dmy
+                J[2 * i, 2 * j + k] = ex / uyi
+                J[2 * i + 1, 2 * j + k] = ey / uyi
+
+
+@njit(cache=True)
+def plan_rate_fsal(p, s):
+    """−1 for constant friction (each step evaluates its first stage's rate); for
+    velocity-dependent friction, whose rate is stiff where the law flattens (:func:`_viscous_rate`),
+    the regime of this step's rate, carry + 8·contact (the masks :func:`plan_rate_active` wrote):
+    a step that starts where the last accepted one ended, in the same regime, takes that step's
+    end-stage rate (:data:`femoat.bearings.registry.RATE_KERNELS`). Its committed z lies on the
+    slow manifold of that stage's structure values, not of the step's end values (the pair's
+    explicit last stage is not its solution); the rate evaluated there adds the relaxation
+    between the two, (Δ of the element's displacement rate)/u_y,i, which the stages then carry
+    (measured on the bearing alone at rtol 1e-7: a rate of 7/s against 0.1/s, steps held at
+    1e-8 s)."""
+    if p[_RATE + 1] > 0.0:
+        return int(s[_CARRY]) + 8 * int(s[_CONTACT])
+    return -1
+
+
 @njit(cache=True)
 def plan_rate_state(p, s, z):
     """The committed hysteretic vectors (z_1, z_2, z_3) [-] into ``z``; returns 6."""
@@ -810,6 +968,8 @@ def _carried_solve(p, s, ux, uy, z):
     coefficients)."""
     carry = int(s[_CARRY])
     r = _series(p, s, 0, ux, uy, carry, z, 0.0)
+    if p[_RATE + 1] > 0.0:  # a viscoplastic z is the state itself, inside its disk too
+        return r, carry
     for _ in range(3):
         back = 0
         for i in range(3):
@@ -896,7 +1056,11 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     Newton needs it approximately). Along a line through the z_i (v and every z_i along it,
     |z_i| = 1) g is exactly zero. (Every flagged element is carried here: the release of an
     element whose stage moved back is the force's and the commit's, as the single pendulum's;
-    a rate that switched with it would stall the stage's Newton.)"""
+    a rate that switched with it would stall the stage's Newton.) Velocity-dependent friction:
+    :func:`_viscous_rate`."""
+    if p[_RATE + 1] > 0.0:
+        _viscous_rate(p, s, ux, uy, vx, vy, z, g, J)
+        return
     carry, contact = int(s[_CARRY]), int(s[_CONTACT])
     r = _contact_series(p, s, ux, uy, carry, z, contact)
     for a in range(N_RATE_PLAN):
@@ -975,7 +1139,11 @@ def plan_rate_turn(p, s, ux, uy, vx, vy, ax, ay, z, g, J):
     O(h²), the order of the whole step on orbits where the outer elements turn). ``J``'s first
     row is scratch. Along a line through the z_i (every rate exactly zero) it is the single
     pendulum's z_1·v with ṙ = z_1·a: there loading is the motion along z_1, and the turn search
-    is the one-axis bearing's to the bit."""
+    is the one-axis bearing's to the bit. Velocity-dependent friction has no turn to land on
+    (a viscoplastic element's rate is continuous where its force re-enters its disk): r = 1,
+    ṙ = 0."""
+    if p[_RATE + 1] > 0.0:
+        return 1.0, 0.0
     carry = int(s[_CARRY])
     plan_rate(p, s, ux, uy, vx, vy, z, g, J)
     still = True
@@ -1020,10 +1188,11 @@ def plan_rate_commit(p, s, ux, uy, vx, vy, z):
     truncation error; normalised in ``z`` in place), then the series state there with those z
     (:func:`_carried_solve`), so that the committed internal state is in equilibrium with its
     z (else a solve from it at the same displacement finds the element just inside its disk and
-    the kink search lands a sliver at the next step's start)."""
+    the kink search lands a sliver at the next step's start). A velocity-dependent z is kept as
+    it is (|z| is its friction over μ_slow·W: :func:`_viscous_rate`)."""
     carry = int(s[_CARRY])
     for i in range(3):
-        if (carry >> i) & 1:
+        if (carry >> i) & 1 and p[_RATE + 1] == 0.0:
             zx, zy = z[2 * i], z[2 * i + 1]
             norm = np.sqrt(zx * zx + zy * zy)
             z[2 * i] = zx / norm
@@ -1093,7 +1262,8 @@ class TripleFrictionPendulum(BearingFaces):
     a : float
         Rate parameter of the velocity dependence [s/in], > 0 with the μ_fast; 0 without.
 
-    Velocity-dependent friction runs on Newmark's step, in 1D and in plan (module docstring).
+    Velocity-dependent friction runs on Newmark's step in 1D and on the coupled-friction step
+    (ark5) in plan (module docstring).
 
     The defaults are a typical bearing: inner L1 = 12 in and outer L2 = L3 = 88 in (the
     isolated period of the large-displacement regime III, 2π·sqrt((L2 + L3)/g), is 4.2 s),
@@ -1283,8 +1453,13 @@ class TripleFrictionPendulum(BearingFaces):
 
 def rate_form_covers(params):
     """Whether the rate form (the coupled-friction step's) covers a bearing of these params:
-    constant friction only; velocity-dependent friction follows each step's path (Newmark)."""
-    return not reads_duration(params)
+    constant friction, or velocity-dependent friction on all three elements (μ_fast > μ_slow
+    on each: :func:`_viscous_rate`); a bearing with μ_fast = μ_slow on some surface and not on
+    the others follows each step's path (Newmark)."""
+    if not reads_duration(params):
+        return True
+    return all(params[_RATE + 2 * i + 1] > 0.0 and params[_RATE + 2 * i] > params[_E0 + 4 * i + 1]
+               for i in range(3))
 
 
 def reads_duration(params):

@@ -96,6 +96,23 @@ def rate_scratch(work):
     return rate_views(work.rq)
 
 
+FSAL_ROWS = 9
+"""Rows of ``kz`` after the method's stages (:func:`fsal_views`): where the last coupled trial
+ended for each bearing (z, (u_x, u_y), (v_x, v_y), its rate's regime code) and the first-stage
+rate a step starting at a recorded point takes (rate, z, u, v, code): the coupled-friction
+step's first same as last for a stiff rate (``femoat.bearings.registry.RATE_KERNELS``,
+``plan_rate_fsal``). NaN until written (no point matches)."""
+
+
+@njit(cache=True, inline="always")
+def fsal_views(kz, e):
+    """Bearing ``e``'s rows of ``kz`` (:data:`FSAL_ROWS`): (its rate at the method's last stage,
+    trial end z, u, v, code, recorded rate, z, u, v, code)."""
+    n = kz.shape[0] - FSAL_ROWS
+    return (kz[n - 1, e], kz[n, e], kz[n + 1, e], kz[n + 2, e], kz[n + 3, e], kz[n + 4, e],
+            kz[n + 5, e], kz[n + 6, e], kz[n + 7, e], kz[n + 8, e])
+
+
 @njit(cache=True, inline="always")
 def rate_views(rq):
     """(z0, g, w, v, J, A): views of the rate scratch ``rq``, four vectors of at least nq

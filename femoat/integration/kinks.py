@@ -9,12 +9,13 @@ from femoat.bearings.dispatch import (
     bearing_plan_branch,
     bearing_plan_rate,
     bearing_plan_rate_branch,
+    bearing_plan_rate_fsal,
     bearing_plan_rate_state,
     bearing_plan_rate_turn,
     bearing_plan_turn_direction,
 )
 from femoat.compilation.jit import njit
-from femoat.integration.bundles import rate_scratch
+from femoat.integration.bundles import fsal_views, rate_scratch
 from femoat.integration.interpolants import crossing, hermite
 from femoat.structure.materials.kernels import material_commit, material_trial
 
@@ -92,18 +93,25 @@ def _carried_branch(kind, p, s, th, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, 
 
 @njit(cache=True)
 def _carried_kink(kind, p, s, hh, u0x, u0y, v0x, v0y, u1x, u1y, v1x, v1y, z1, z0, g0, g1, zt, J,
-                  bisections):
+                  bisections, first, last):
     """Fraction θ just past the change of branch of a bearing whose step carried its friction
     state (``kind``'s ``plan_rate_branch``, z following the step: its cubic Hermite from its
     values and rates at both ends, exact to the step's order where the branch is a function of
     z, as a triple pendulum's sticking elements are), 2 when it stays on one branch (``z0``,
-    ``g0``, ``g1``, ``zt``, ``J`` scratch; its own compiled function, as :func:`_carried_turn`)."""
+    ``g0``, ``g1``, ``zt``, ``J`` scratch; its own compiled function, as :func:`_carried_turn`).
+    A stiff rate (the kind's ``plan_rate_fsal`` ≥ 0) is the step's own at its first and last
+    stages (``first``, ``last``: evaluated at the ends, it adds a relaxation the step never
+    took)."""
     nq = bearing_plan_rate_state(kind, p, s, z0)
     moved = False
     for q in range(nq):
         if z1[q] != z0[q]:
             moved = True
-    if moved:
+    if moved and bearing_plan_rate_fsal(kind, p, s) >= 0:
+        for q in range(nq):
+            g0[q] = first[q]
+            g1[q] = last[q]
+    elif moved:
         bearing_plan_rate(kind, p, s, u0x, u0y, v0x, v0y, z0, g0, J)
         bearing_plan_rate(kind, p, s, u1x, u1y, v1x, v1y, z1, g1, J)
     lo, hi = 2.0 ** -bisections, 1.0
@@ -139,9 +147,10 @@ def _bearing_kink(e, hh, model, state, work, fine):
         if bearing_plan_rate_branch(kind, p, s, ux, uy, z0) == bearing_plan_rate_branch(
                 kind, p, s, work.u[ix], work.u[iy], work.bz[e]):
             return 2.0
+        last = fsal_views(work.kz, e)[0]
         return _carried_kink(kind, p, s, hh, state.u[ix], state.u[iy], state.v[ix], state.v[iy],
                              work.u[ix], work.u[iy], work.v[ix], work.v[iy], work.bz[e], z0, g0,
-                             g1, zt, J, bisections)
+                             g1, zt, J, bisections, work.kz[0, e], last)
     lo, hi = 2.0 ** -bisections, 1.0
     ux, uy = _bearing_path(e, lo, hh, model, state, work)
     branch0 = bearing_plan_branch(kind, p, s, ux, uy)

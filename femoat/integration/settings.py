@@ -38,8 +38,9 @@ class Integrator:
         "tsit5": "dp5" with the Tsitouras 5(4) pair instead of Dormand-Prince's, on the same
         step (:mod:`femoat.integration.methods.tsit5`; why it is not the default:
         ``benchmarks/README.md``; refused on plan bearings as "dp5"). A triple pendulum with
-        velocity-dependent friction takes "newmark" only, in 1D and in plan (its friction a
-        return over each step: :func:`femoat.bearings.registry.reads_duration`). All
+        velocity-dependent friction takes "newmark" only in 1D (its friction a return over each
+        step: :func:`femoat.bearings.registry.reads_duration`), "ark5" (its default) or
+        "newmark" in plan (with μ_fast > μ on every surface; else "newmark" only). All
         locate contact events and land on element kinks the same way; "dp5", "tsit5" and
         "ark5" also land on the turning points of yielding elements (every stage of their step is
         evaluated from the committed state).

@@ -11,7 +11,7 @@ import numpy as np
 
 from femoat.bearings import registry as bearing_registry
 from femoat.integration import codes, methods
-from femoat.integration.bundles import Model, Recorder, Settings, State, Work
+from femoat.integration.bundles import FSAL_ROWS, Model, Recorder, Settings, State, Work
 from femoat.integration.limits import pack_limits
 from femoat.integration.methods import N_STAGES
 from femoat.integration.recording import channels as registry
@@ -282,9 +282,10 @@ def _check_plan_method(name, packed):
             if not bearing_registry.rate_form_covers(kind, p):
                 raise ValueError(
                     f"method = 'ark5' on a bearing its kind's rate form does not cover ({kind}: "
-                    "a triple pendulum's velocity-dependent friction): its friction would be "
-                    "a backward-Euler return over each stage (first order in the step). Use "
-                    "Integrator(method='newmark'), the default of a plan run on this bearing.")
+                    "a triple pendulum whose velocity-dependent friction leaves some surface at "
+                    "μ_fast = μ): its friction would be a backward-Euler return over each stage "
+                    "(first order in the step). Use Integrator(method='newmark'), the default "
+                    "of a plan run on this bearing, or give every surface μ_fast > μ.")
 
 
 def _check_axis_method(name, packed):
@@ -343,9 +344,17 @@ def _bundles(packed, ag, u, v, settings):
                 ev=np.zeros(n), de=np.zeros(codes.N_ENERGY),
                 wexp=np.zeros((n, 4)), wexp_h=np.zeros(n), wscratch=np.zeros((4, 2, 2)),
                 s_tmp=np.zeros(packed.el_S.shape[1]), b_rate=np.zeros(nb, dtype=np.int64),
-                bz=np.zeros((nb, nq)), kz=np.zeros((N_STAGES, nb, nq)),
+                bz=np.zeros((nb, nq)), kz=_stage_rates_array(nb, nq),
                 rq=np.zeros((4 + 2 * nq, nq + 1)))
     return model, state, work
+
+
+def _stage_rates_array(nb, nq):
+    """The work bundle's ``kz``: the stages' rates, then :data:`~femoat.integration.bundles.
+    FSAL_ROWS` rows of NaN."""
+    kz = np.zeros((N_STAGES + FSAL_ROWS, nb, nq))
+    kz[N_STAGES:] = np.nan
+    return kz
 
 
 def _start(kern, packed, model, state, settings, work, channels_asked, history, integ,

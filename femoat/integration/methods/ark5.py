@@ -48,10 +48,11 @@ from femoat.bearings.dispatch import (
     bearing_plan_rate,
     bearing_plan_rate_active,
     bearing_plan_rate_force,
+    bearing_plan_rate_fsal,
     bearing_plan_rate_state,
 )
 from femoat.compilation.jit import njit
-from femoat.integration.bundles import rate_scratch, rate_views
+from femoat.integration.bundles import fsal_views, rate_scratch, rate_views
 from femoat.integration.codes import E_INPUT, E_VISCOUS
 from femoat.integration.forces import _internal_force, trial_outputs
 from femoat.integration.methods import dp5
@@ -237,6 +238,65 @@ def _rates_at(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
         bearing_plan_rate(b_kind[e], b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], bz[e], g, J)
         for q in range(nq):
             kz[st, e, q] = g[q]
+        if st == 0:
+            _first_same_as_last(e, nq, b_kind[e], b_P[e], b_S[e], kz, bz[e], u[ix], u[iy], v[ix],
+                                v[iy])
+
+
+@njit(cache=True, inline="always")
+def _at(nq, rg, rz, ru, rv, rc, z, ux, uy, vx, vy, code):
+    """Whether the recorded point (rz, ru, rv, rc) (:func:`fsal_views`) is (z, u, v, code), z
+    compared where its recorded rate ``rg`` moves it (a state the step did not carry, rate 0,
+    is committed as its kind computes it, e.g. a sticking element's radial return)."""
+    if not (rc[0] == code and ru[0] == ux and ru[1] == uy and rv[0] == vx and rv[1] == vy):
+        return False
+    for q in range(nq):
+        if rg[q] != 0.0 and rz[q] != z[q]:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _first_same_as_last(e, nq, kind, p, s, kz, z, ux, uy, vx, vy):
+    """For a bearing whose rate is stiff (its kind's ``plan_rate_fsal`` ≥ 0), the first stage's
+    rate ``kz[0, e]`` is the end-stage rate of the last accepted step where that step ended here
+    (z, u, v) in the same regime: the last coupled trial's, recorded as this point's on the
+    first trial from here (a retry after a rejection keeps it). The pair's implicit part is
+    stiffly accurate, so that rate is the one the end state was solved with; the rate evaluated
+    at the end state adds the relaxation from the stage's structure values to the step's
+    (``femoat.bearings.triple_friction_pendulum.plan_rate_fsal``)."""
+    code = bearing_plan_rate_fsal(kind, p, s)
+    if code < 0:
+        return
+    last, tz, tu, tv, tc, sg, sz, su, sv, sc = fsal_views(kz, e)
+    if _at(nq, last, tz, tu, tv, tc, z, ux, uy, vx, vy, code):
+        for q in range(nq):
+            sg[q] = last[q]
+            sz[q] = tz[q]
+        su[0], su[1], sv[0], sv[1], sc[0] = tu[0], tu[1], tv[0], tv[1], tc[0]
+    if _at(nq, sg, sz, su, sv, sc, z, ux, uy, vx, vy, code):
+        for q in range(nq):
+            kz[0, e, q] = sg[q]
+
+
+@njit(cache=True, inline="always")
+def _mark_trial_end(model, state, work):
+    """Record where this coupled trial ended for each stiff carried bearing (its end z, u, v
+    and rate regime; its end-stage rate stays in ``kz``'s last stage row):
+    :func:`_first_same_as_last` reads it at the next step's start."""
+    for e in range(model.b_dofs.shape[0]):
+        nq = work.b_rate[e]
+        if nq == 0:
+            continue
+        code = bearing_plan_rate_fsal(model.b_kind[e], model.b_P[e], state.b_S[e])
+        if code < 0:
+            continue
+        ix, iy = model.b_dofs[e, 0], model.b_dofs[e, 1]
+        _, tz, tu, tv, tc, _, _, _, _, _ = fsal_views(work.kz, e)
+        for q in range(nq):
+            tz[q] = work.bz[e, q]
+        tu[0], tu[1], tv[0], tv[1], tc[0] = (work.u[ix], work.u[iy], work.v[ix], work.v[iy],
+                                             float(code))
 
 
 @njit(cache=True, inline="always")
@@ -481,6 +541,7 @@ def coupled_step(hh, ag1, model, state, settings, work):
                 kv[s, i] = work.v[i]
         if not last:
             _stage_rates(s, hh, model, state, work)
+    _mark_trial_end(model, state, work)
     dp5.walls_exact(hh, ag0, ag1, nb, model, state, work)
     dp5.stage_energy(ARK_B, ARK_C, hh, ag0, ag1, nb, model, work)
     if not dp5.open_end(model, work):
