@@ -2,7 +2,7 @@
 backward-Euler return on a steady orbit (against the closed form, and OpenSees' element), and
 the cost and accuracy of a plan run on it, beside the constant-friction bearing.
 
-    python benchmarks/tfp_velocity.py [--no-opensees] [--twin-run] [--suite FOLDER]
+    python benchmarks/tfp_velocity.py [--no-opensees] [--twin-run] [--mce] [--suite FOLDER]
 
 Bearing: ``TripleFrictionPendulum(mu1_fast=0.03, mu2_fast=0.08, mu3_fast=0.15, a=1.0)`` (the
 defaults' μ as μ_slow). Prints:
@@ -13,11 +13,15 @@ defaults' μ as μ_slow). Prints:
   ``TripleFrictionPendulum`` with ``VelDependent`` friction on the same imposed orbit: its last
   force and how much it swings over the last half turn (a steady orbit's force is constant);
 * the paper building in plan on the bearing in the square concrete moat (law H), the first 8 s
-  of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°: Newmark at its
-  default rtol and at 1e-6, 1e-7 against 1e-8: steps, loop CPU, the worst peak's relative
-  error; the constant-friction bearing at its default for scale; the same for the 1D model
+  of Erzincan along x and its reversed copy at 0.6 along y, turned by 30°: ark5 (the plan
+  default: the rate form) and Newmark (the backward-Euler return), each at its default rtol and
+  at 1e-6, 1e-7: steps, loop CPU (best of 3), the worst peak's relative error against each
+  method's run at rtol 1e-8; the constant-friction bearing at its default for scale; the same
+  (Newmark only) for the 1D model
   along x under the x record (its one-axis kernels read each step's duration from the loop),
   and the 1D run against the plan run on a line (y at rest);
+* ``--mce``: far-field pairs 1, 5 and 12 at the MCE (the bidirectional study's scale), 0° and
+  30°, in a 4 in moat: ark5 and Newmark at their defaults against both converged;
 * ``--twin-run``: that plan run's OpenSees twin (``femoat.opensees.plan``, tol 1e-6; at 1e-8 it
   stops converging) at 0.2, 0.1 and 0.05 ms: its worst peak against femoat at rtol 1e-8 (about
   a minute of OpenSees);
@@ -25,7 +29,7 @@ defaults' μ as μ_slow). Prints:
   plan suite (``femoat.studies.isolators``: the 22 far-field pairs at the MCE, 0° and 45°, the
   paper's concrete moat) on its triple pendulum with constant friction against the same bearing
   with μ_fast = the study's μ, μ_slow = μ/2 and a = 1.5 s/in (about 0.75 s/in at full scale:
-  the model's velocities are half the prototype's), each at its plan default (ark5; Newmark):
+  the model's velocities are half the prototype's), each at its plan default (ark5):
   per isolator, the median peak plan displacement, the probability of pounding, the median
   peak impact force of the records that pounded, the median peak drift ratio, and the CPU.
 """
@@ -162,21 +166,30 @@ def runs_table():
     def line_model(b):
         return plan_model(b).along("x")
 
-    for label, plan, motion, model in (("plan", True, pair, plan_model),
-                                       ("1D", False, m8, line_model)):
+    for label, plan, motion, model, methods in (
+            ("plan", True, pair, plan_model, ("ark5", "newmark")),
+            ("1D", False, m8, line_model, ("newmark",))):
         run(model(BEARING), motion)  # (load the kernels)
-        ref = _peaks(run(model(BEARING), motion,
-                         integrator=Integrator(method="newmark", rtol=1e-8)), plan)
-        print(f"\n{label}: velocity-dependent bearing on Newmark, the worst peak against rtol 1e-8")
-        print(f"{'rtol':>8} {'steps':>8} {'CPU [s]':>8} {'worst peak':>10}")
-        for rtol in (None, 1e-6, 1e-7):
-            integ = None if rtol is None else Integrator(method="newmark", rtol=rtol)
-            t = time.process_time()
-            r = run(model(BEARING), motion, integrator=integ, history=False)
-            cpu = time.process_time() - t
-            err = np.max(np.abs(_peaks(r, plan) / ref - 1.0))
-            name = "default" if rtol is None else f"{rtol:.0e}"
-            print(f"{name:>8} {r.peaks['steps']:8d} {cpu:8.3f} {err:10.1e}", flush=True)
+        refs = [_peaks(run(model(BEARING), motion, integrator=Integrator(method=m, rtol=1e-8)),
+                       plan) for m in methods]
+        print(f"\n{label}: velocity-dependent bearing, the worst peak against each method's run "
+              f"at rtol 1e-8 ({', '.join(methods)})")
+        print(f"{'method':>8} {'rtol':>8} {'steps':>8} {'CPU [s]':>8} "
+              + " ".join(f"{'vs ' + m:>10}" for m in methods))
+        for method in methods:
+            for rtol in (None, 1e-6, 1e-7):
+                integ = Integrator(method=method) if rtol is None else \
+                    Integrator(method=method, rtol=rtol)
+                best = np.inf
+                for _ in range(3):
+                    t = time.process_time()
+                    r = run(model(BEARING), motion, integrator=integ, history=False)
+                    best = min(best, time.process_time() - t)
+                errs = " ".join(f"{np.max(np.abs(_peaks(r, plan) / ref - 1.0)):10.1e}"
+                                for ref in refs)
+                name = "default" if rtol is None else f"{rtol:.0e}"
+                print(f"{method:>8} {name:>8} {r.peaks['steps']:8d} {best:8.3f} {errs}",
+                      flush=True)
         const = TripleFrictionPendulum()
         run(model(const), motion)
         t = time.process_time()
@@ -185,11 +198,56 @@ def runs_table():
               f"{r.peaks['steps']} steps, {time.process_time() - t:.3f} s")
     zero = GroundMotion(0.0 * m8.accel_g, m8.dt, name="zero")
     one = _peaks(run(line_model(BEARING), m8), False)
-    both = run(plan_model(BEARING), RecordPair(m8, zero)).peaks
+    both = run(plan_model(BEARING), RecordPair(m8, zero),
+               integrator=Integrator(method="newmark")).peaks
     on_line = np.array([both["peak_plan_base_displacement"], both["peak_impact_force_px"],
                         both["peak_impact_force_mx"], *both["peak_drift_x"]])
-    print(f"1D run against the plan run on a line (y at rest), both at the default: worst peak "
+    print(f"1D run against the plan run on a line (y at rest), both on Newmark at its default: worst peak "
           f"{np.max(np.abs(one / on_line - 1.0)):.1e}")
+
+
+def mce_table():
+    """Far-field pairs 1, 5 and 12 at the bidirectional study's MCE scale (time x 0.5), at 0° and
+    30°, the paper building on the bearing in the concrete moat (gap 4 in, law H): ark5 and
+    Newmark at their defaults, steps, loop CPU (best of 3), impacts and the worst peak against
+    ark5 at rtol 1e-9 and Newmark at rtol 1e-8 (the two converged runs' own agreement first)."""
+    from femoat.ground_motions import fema_p695_pair
+    from femoat.plan import rectangular_moat
+    from femoat.studies.bidirectional import full_anchor
+
+    model = PlanModel(PlanBuilding(isolator=BEARING), walls=rectangular_moat("concrete", "H",
+                                                                             gap=4.0))
+    sf = full_anchor()
+    tags = ("px", "mx", "py", "my")
+
+    def worst(a, b):
+        m = np.abs(b) > 1e-9 * np.abs(b).max()
+        return np.max(np.abs(a[m] / b[m] - 1.0)) if m.any() else 0.0
+
+    print("\nfar-field pairs at the MCE, the worst peak against ark5 at rtol 1e-9 and Newmark at 1e-8")
+    print(f"{'pair':>6} {'method':>8} {'steps':>7} {'CPU [s]':>8} {'vs ark5':>9} "
+          f"{'vs newmark':>10}  impacts (+x, -x, +y, -y)")
+    for k, angle in ((1, 0.0), (1, 30.0), (5, 0.0), (5, 30.0), (12, 0.0), (12, 30.0)):
+        p = fema_p695_pair("farfield", k, scale=sf, normalized=True)
+        pair = RecordPair(p.x.time_scaled(0.5), p.y.time_scaled(0.5),
+                          scale=p.scale).rotated(angle)
+        d = pair.duration + 1.0
+        ra = run(model, pair, integrator=Integrator(method="ark5", rtol=1e-9), duration=d)
+        rn = run(model, pair, integrator=Integrator(method="newmark", rtol=1e-8), duration=d)
+        ref_a, ref_n = _peaks(ra, True), _peaks(rn, True)
+        label = f"{k}@{angle:.0f}"
+        print(f"{label:>6} converged runs against each other: {worst(ref_a, ref_n):.1e}")
+        for method in ("ark5", "newmark"):
+            best = np.inf
+            for _ in range(3):
+                t = time.process_time()
+                r = run(model, pair, integrator=Integrator(method=method), duration=d,
+                        history=False)
+                best = min(best, time.process_time() - t)
+            pk = _peaks(r, True)
+            print(f"{label:>6} {method:>8} {r.peaks['steps']:7d} {best:8.3f} "
+                  f"{worst(pk, ref_a):9.1e} {worst(pk, ref_n):10.1e}  "
+                  f"{[r.peaks[f'impacts_{t}'] for t in tags]}", flush=True)
 
 
 def suite_table(folder):
@@ -230,12 +288,16 @@ def main(argv=None):
     ap.add_argument("--twin-run", action="store_true")
     ap.add_argument("--suite", metavar="FOLDER")
     ap.add_argument("--suite-only", action="store_true", help="only the --suite table")
+    ap.add_argument("--mce", action="store_true",
+                    help="also far-field pairs 1, 5, 12 at the MCE on ark5 and Newmark")
     args = ap.parse_args(argv)
     if not args.suite_only:
         orbit_table(not args.no_opensees)
         runs_table()
         if args.twin_run:
             twin_run_table()
+        if args.mce:
+            mce_table()
     if args.suite:
         suite_table(args.suite)
 

@@ -944,8 +944,7 @@ def plan_rate_fsal(p, s):
     slow manifold of that stage's structure values, not of the step's end values (the pair's
     explicit last stage is not its solution); the rate evaluated there adds the relaxation
     between the two, (Δ of the element's displacement rate)/u_y,i, which the stages then carry
-    (measured on the bearing alone at rtol 1e-7: a rate of 7/s against 0.1/s, steps held at
-    1e-8 s)."""
+    as a transient (benchmarks/README.md, issue 28, stop 42)."""
     if p[_RATE + 1] > 0.0:
         return int(s[_CARRY]) + 8 * int(s[_CONTACT])
     return -1
