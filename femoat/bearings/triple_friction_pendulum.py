@@ -869,6 +869,20 @@ def _slip(p, i, z):
     return w * nx, w * ny, wp, w / rho, nx, ny
 
 
+@njit(cache=True, inline="always")
+def _rate_start(p, s, ux, uy, z, g, J):
+    """(carry mask, contact mask, the series result the compliances read) of a rate evaluation
+    at (ux, uy) [in] with the carried z, ``g`` and ``J`` zeroed (the rows of the elements not
+    carried stay zero)."""
+    carry, contact = int(s[_CARRY]), int(s[_CONTACT])
+    r = _contact_series(p, s, ux, uy, carry, z, contact)
+    for a in range(N_RATE_PLAN):
+        g[a] = 0.0
+        for b in range(N_RATE_PLAN):
+            J[a, b] = 0.0
+    return carry, contact, r
+
+
 @njit(cache=True)
 def _viscous_rate(p, s, ux, uy, vx, vy, z, g, J):
     """:func:`plan_rate` for velocity-dependent friction, each carried element an
@@ -882,12 +896,7 @@ def _viscous_rate(p, s, ux, uy, vx, vy, z, g, J):
     constant, as in :func:`plan_rate`): ∂g_i/∂z_j = (C_i·∂Ḟ/∂z_j + δ_ij·(k_e,i·C_i − I)·M_j)/u_y,i,
     ∂Ḟ/∂z_j = −S⁻¹·k_e,j·C_j·M_j, M_j = ∂m_j/∂z_j. Stiff where the law flattens (its eigenvalue
     −w′/u_y grows as e^(a·fact·w)): the implicit part of the step."""
-    carry, contact = int(s[_CARRY]), int(s[_CONTACT])
-    r = _contact_series(p, s, ux, uy, carry, z, contact)
-    for a in range(N_RATE_PLAN):
-        g[a] = 0.0
-        for b in range(N_RATE_PLAN):
-            J[a, b] = 0.0
+    carry, contact, r = _rate_start(p, s, ux, uy, z, g, J)
     kxx, kxy, kyy, comp = _series_rate(p, s, r, 0, z, contact)
     slips = (_slip(p, 0, z) if carry & 1 else (0.0,) * 6,
              _slip(p, 1, z) if (carry >> 1) & 1 else (0.0,) * 6,
@@ -1060,12 +1069,7 @@ def plan_rate(p, s, ux, uy, vx, vy, z, g, J):
     if p[_RATE + 1] > 0.0:
         _viscous_rate(p, s, ux, uy, vx, vy, z, g, J)
         return
-    carry, contact = int(s[_CARRY]), int(s[_CONTACT])
-    r = _contact_series(p, s, ux, uy, carry, z, contact)
-    for a in range(N_RATE_PLAN):
-        g[a] = 0.0
-        for b in range(N_RATE_PLAN):
-            J[a, b] = 0.0
+    carry, contact, r = _rate_start(p, s, ux, uy, z, g, J)
     kxx, kxy, kyy, comp = _series_rate(p, s, r, carry, z, contact)
     fx, fy = kxx * vx + kxy * vy, kxy * vx + kyy * vy  # Ḟ
     for i in range(3):
