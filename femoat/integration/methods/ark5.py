@@ -235,12 +235,12 @@ def _rates_at(st, hh, b_rate, b_kind, b_P, b_S, b_dofs, kz, bz, u, v, rq):
                 kz[st, e, q] = (bz[e, q] - (z0[q] + hh * acc)) / hg
             continue
         ix, iy = b_dofs[e, 0], b_dofs[e, 1]
+        if st == 0 and _first_same_as_last(e, nq, b_kind[e], b_P[e], b_S[e], kz, bz[e], u[ix],
+                                           u[iy], v[ix], v[iy]):
+            continue
         bearing_plan_rate(b_kind[e], b_P[e], b_S[e], u[ix], u[iy], v[ix], v[iy], bz[e], g, J)
         for q in range(nq):
             kz[st, e, q] = g[q]
-        if st == 0:
-            _first_same_as_last(e, nq, b_kind[e], b_P[e], b_S[e], kz, bz[e], u[ix], u[iy], v[ix],
-                                v[iy])
 
 
 @njit(cache=True, inline="always")
@@ -264,19 +264,22 @@ def _first_same_as_last(e, nq, kind, p, s, kz, z, ux, uy, vx, vy):
     first trial from here (a retry after a rejection keeps it). The pair's implicit part is
     stiffly accurate, so that rate is the one the end state was solved with; the rate evaluated
     at the end state adds the relaxation from the stage's structure values to the step's
-    (``femoat.bearings.triple_friction_pendulum.plan_rate_fsal``)."""
+    (``femoat.bearings.triple_friction_pendulum.plan_rate_fsal``). True when it wrote that
+    rate (the step then evaluates none: the same carried states, so the same zero rows)."""
     code = bearing_plan_rate_fsal(kind, p, s)
     if code < 0:
-        return
+        return False
     last, tz, tu, tv, tc, sg, sz, su, sv, sc = fsal_views(kz, e)
     if _at(nq, last, tz, tu, tv, tc, z, ux, uy, vx, vy, code):
         for q in range(nq):
             sg[q] = last[q]
             sz[q] = tz[q]
         su[0], su[1], sv[0], sv[1], sc[0] = tu[0], tu[1], tv[0], tv[1], tc[0]
-    if _at(nq, sg, sz, su, sv, sc, z, ux, uy, vx, vy, code):
-        for q in range(nq):
-            kz[0, e, q] = sg[q]
+    if not _at(nq, sg, sz, su, sv, sc, z, ux, uy, vx, vy, code):
+        return False
+    for q in range(nq):
+        kz[0, e, q] = sg[q]
+    return True
 
 
 @njit(cache=True, inline="always")
