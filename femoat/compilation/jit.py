@@ -108,6 +108,10 @@ def _register():
         return
     from numba.core.typing.typeof import typeof_impl
 
+    from femoat.compilation.inlining import install
+
+    install()
+
     @typeof_impl.register(Kernel)
     def _typeof_kernel(value, context):
         return typeof_impl(value.dispatcher, context)
