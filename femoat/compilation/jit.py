@@ -54,6 +54,8 @@ class Kernel:
             import numba
 
             self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
+            if self.options.get("inline", "never") == "never":
+                _compile_for_types(self._dispatcher)
             _started.append(self)
         return self._dispatcher
 
@@ -80,6 +82,24 @@ class Kernel:
 
     def __repr__(self):
         return f"<femoat kernel {self.py_func.__module__}.{self.py_func.__qualname__}>"
+
+
+def _compile_for_types(dispatcher):
+    """Make a kernel called from compiled code compile one version per argument *types*, not
+    one per constant: numba types a constant argument as a literal (``_series(p, s, 0, ...)``:
+    ``Literal[int](0)``) and compiles the callee anew for each literal value and for the
+    variable, each a whole pipeline (the triple pendulum's series solve was compiled three times).
+    The callee compiled for the plain types serves every call (a literal converts to its type);
+    the arithmetic is the same, only the branches on such an argument are taken at run time."""
+    from numba.core.types import unliteral
+
+    resolve = dispatcher.get_call_template
+
+    def get_call_template(args, kws):
+        return resolve(tuple(unliteral(a) for a in args),
+                       {k: unliteral(v) for k, v in kws.items()})
+
+    dispatcher.get_call_template = get_call_template
 
 
 def started():
