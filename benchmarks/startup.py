@@ -14,6 +14,10 @@ Prints, each in a fresh Python process:
 4. **first femoat paper** on empty caches (``--quick`` skipped: the whole study and its
    figures), end to end, wall clock.
 
+``--compare-inliner``: step 1 again with numba's own inliner (``FEMOAT_FAST_INLINE=0``:
+:mod:`femoat.compilation.inlining` not installed), side by side with femoat's (a few more
+minutes).
+
 Numbers go to docs/startup.md and the README; nothing here is asserted.
 """
 
@@ -97,6 +101,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--skip-cold", action="store_true",
                     help="only the warm start (the cold compile takes minutes)")
+    ap.add_argument("--compare-inliner", action="store_true",
+                    help="also the cold compile with numba's own inliner (FEMOAT_FAST_INLINE=0)")
     args = ap.parse_args(argv)
     base = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT),
                                                          os.environ.get("PYTHONPATH", "")])}
@@ -111,6 +117,13 @@ def main(argv=None):
             for name, cpu in sorted(cold["top"].items(), key=lambda kv: -kv[1]):
                 if cpu > 0.5:
                     print(f"     {name:28s}{cpu:8.1f} s")
+            if args.compare_inliner:
+                with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
+                    out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
+                                                "FEMOAT_FAST_INLINE": "0"})
+                own = json.loads(out.strip().splitlines()[-1])
+                print(f"   with numba's own inliner (FEMOAT_FAST_INLINE=0): {own['total']:.1f} s "
+                      f"CPU ({wall:.1f} s wall); run_chunk {own['top'].get('run_chunk', 0):.1f} s")
             print(f"2. a first plan run after it: {cold['plan_extra']:.1f} s CPU in all "
                   f"(kernels compiled for it: {cold['plan_kernels'] or 'none'})")
             (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, env))
