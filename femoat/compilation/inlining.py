@@ -34,9 +34,9 @@ import collections
 import os
 import threading
 
-NUMBA_VERSIONS = ((0, 59), (0, 68))
-"""The first and last numba minor versions whose ``InlineWorker`` this module was written
-against (both ends included)."""
+NUMBA_VERSIONS = ((0, 68), (0, 68))
+"""The first and last numba minor versions whose ``InlineWorker`` this module was read and
+tested against (both ends included); on others numba's own inliner runs."""
 
 _installed = []
 _session = threading.local()
