@@ -137,3 +137,45 @@ def test_each_inlined_helper_is_built_once(both):
     # level2 4, level1 8, level0 16 for the tree's one compile. The memo builds each once.
     fast, _ = both
     assert fast["builds"] == {"level0": 1, "level1": 1, "level2": 1, "level3": 1}
+
+
+def test_a_copy_is_dropped_only_where_both_names_are_assigned_once():
+    # Inlining turns each argument into a copy `param = caller_var`; femoat's helpers take the
+    # loop's bundles, so the copies are dropped (femoat.compilation.inlining._drop_aliases):
+    # `a = t` goes (t and a each assigned once: the same value wherever a is read) while the
+    # copies of b stay (b is assigned again in the loop: `c = b` must keep the value b had
+    # then, and `b = x` is one of b's two assignments).
+    import numpy as np
+    from numba.core import ir
+    from numba.core.compiler import run_frontend
+
+    from femoat.compilation.inlining import _drop_aliases
+
+    def f(x, t, n):
+        a = t
+        b = x
+        c = x
+        for _ in range(n):
+            c = b
+            b = b + 1.0
+        return a[0] + c + b
+
+    func_ir = run_frontend(f)
+
+    def copies():
+        return {(s.target.name, s.value.name) for blk in func_ir.blocks.values()
+                for s in blk.body if isinstance(s, ir.Assign) and isinstance(s.value, ir.Var)}
+
+    assert {("a", "t"), ("b", "x"), ("c", "b")} <= copies()
+    assert _drop_aliases(func_ir)
+    left = copies()
+    assert ("a", "t") not in left and ("b", "x") in left and ("c", "b") in left
+    reads = {v.name for blk in func_ir.blocks.values() for s in blk.body for v in s.list_vars()}
+    assert "a" not in reads and "t" in reads
+
+    # and compiled (a femoat kernel, so the copies are dropped in its pipeline): t[0] + the
+    # last c (x + n - 1) + the last b (x + n) = 5 + 2.5 + 3.5 for x = 0.5, n = 3
+    from femoat.compilation.jit import njit
+
+    f.__module__ = "femoat._copy_check"
+    assert njit(f)(0.5, np.array([5.0]), 3) == 11.0

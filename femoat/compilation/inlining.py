@@ -4,8 +4,8 @@ femoat's loop is one compiled function into which numba inlines, at the IR level
 hundred helpers (``njit(inline="always")``), many of them inside others: the methods' steps,
 the force routine, the recorder, the bearings' kernels. numba's inliner
 (``numba.core.untyped_passes.InlineInlinables``, through
-``numba.core.inline_closurecall.InlineWorker``) spends most of femoat's compile in two pieces of
-bookkeeping that grow with the number of call sites rather than with the code:
+``numba.core.inline_closurecall.InlineWorker``) spent most of femoat's compile on three things
+that grow with the number of call sites rather than with the code:
 
 1. **the callee's untyped pipeline at every call site**: ``InlineWorker.inline_function``
    translates the callee's bytecode and runs its whole untyped pipeline (its own inlines
@@ -17,15 +17,22 @@ bookkeeping that grow with the number of call sites rather than with the code:
 2. **the copy of the callee's IR**: ``inline_ir`` deep-copies the callee block by block, each
    block with a memo of its own, so the callee's scope (every variable of the function) is
    copied once per block, and compared once per block when the scopes are gathered:
-   quadratic in the function's size. :class:`_OneScopeCopy` copies a whole IR with one memo
+   quadratic in the function's size. :func:`_one_scope_copy` copies a whole IR with one memo
    while ``inline_ir`` runs (the blocks share one scope, as in the original), which is what
    each per-block copy would give less the duplicates.
+3. **the inlined calls' argument copies**: inlining makes each parameter of the callee a copy
+   of the caller's argument (``param = arg``); femoat's helpers take the loop's bundles
+   (tuples of ~30 arrays each), so every inlined call copied hundreds of values into new
+   locals, which LLVM's scalar replacement then took apart again (its largest pass on the
+   loop). :func:`_drop_aliases` replaces, after the inlining pass, each variable that is only
+   ever a copy of another variable assigned once by that variable.
 
-Neither changes the IR that is inlined, only how often it is built and how it is copied: the
-compiled kernels do the same arithmetic (``tests/test_inlining.py``: a nested inline tree's
-results and the solver's fingerprints, bit for bit). Both are installed by
+None of them changes what the compiled code computes, only how often the IR is built, how it
+is copied and how many names hold one value: the compiled kernels do the same arithmetic
+(``tests/test_inlining.py``: a nested inline tree's results, bit for bit against numba's own
+inliner; the solver's stored fingerprints). They are installed by
 :func:`install` when femoat first imports numba (:mod:`femoat.compilation.jit`), only on the
-numba versions where the patched methods were read (:data:`NUMBA_VERSIONS`); on any other
+numba versions whose inliner was read and tested (:data:`NUMBA_VERSIONS`); on any other
 version numba runs unchanged (slower to compile, the same results), and
 ``FEMOAT_FAST_INLINE=0`` turns them off.
 """
@@ -78,6 +85,9 @@ def install():
     worker.run_untyped_passes = _memo_untyped_passes(worker.run_untyped_passes)
     worker.inline_ir = _one_scope_copy(worker.inline_ir)
     ir.Block.__deepcopy__ = _block_deepcopy
+    from numba.core.untyped_passes import InlineInlinables
+
+    InlineInlinables.run_pass = _then_drop_aliases(InlineInlinables.run_pass)
     _installed.append(True)
     return True
 
@@ -149,3 +159,58 @@ def _block_deepcopy(self, memo):
     copy._keep_alive(self, memo)
     out.__dict__.update(copy.deepcopy(self.__dict__, memo))
     return out
+
+
+# ---- 3. the inlined calls' argument copies --------------------------------------------------
+
+def _then_drop_aliases(original):
+    def run_pass(self, state):
+        changed = original(self, state)
+        if _ours(state.func_id.func) and not state.locals:
+            changed = _drop_aliases(state.func_ir) or changed
+        return changed
+
+    run_pass.__wrapped__ = original
+    return run_pass
+
+
+def _drop_aliases(func_ir):
+    """Replace every variable that is only ever a copy of another variable (``a = b``, each the
+    only assignment of its name in the function) by that variable. Returns whether any was.
+
+    Inlining a call turns each argument into such a copy (the callee's parameter assigned the
+    caller's variable); femoat's helpers take the loop's bundles, tuples of ~30 arrays, so each
+    inlined call copied hundreds of values into a new local that LLVM then had to take apart
+    again. With one assignment each, ``b`` is assigned before ``a = b`` runs and never again,
+    so ``a`` and ``b`` hold the same value wherever ``a`` is read."""
+    from numba.core import ir
+    from numba.core.ir_utils import build_definitions, replace_vars
+
+    defs = collections.Counter()
+    for block in func_ir.blocks.values():
+        for stmt in block.body:
+            if isinstance(stmt, ir.Del):
+                return False
+            if isinstance(stmt, ir.Assign):
+                defs[stmt.target.name] += 1
+    alias = {}
+    for block in func_ir.blocks.values():
+        for stmt in block.body:
+            if (isinstance(stmt, ir.Assign) and isinstance(stmt.value, ir.Var)
+                    and defs[stmt.target.name] == 1 and defs[stmt.value.name] == 1
+                    and stmt.target.name != stmt.value.name):
+                alias[stmt.target.name] = stmt.value
+    if not alias:
+        return False
+    for name in list(alias):
+        source = alias[name]
+        while source.name in alias:
+            source = alias[source.name]
+        alias[name] = source
+    replace_vars(func_ir.blocks, alias)
+    for block in func_ir.blocks.values():
+        block.body = [stmt for stmt in block.body
+                      if not (isinstance(stmt, ir.Assign) and isinstance(stmt.value, ir.Var)
+                              and stmt.target.name == stmt.value.name)]
+    func_ir._definitions = build_definitions(func_ir.blocks)
+    return True
