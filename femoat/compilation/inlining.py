@@ -68,9 +68,9 @@ def enabled():
 
 
 def install():
-    """Install the memo and the one-memo copy into numba's ``InlineWorker`` (once a process).
-    Returns whether they are installed (False on an unknown numba, or when
-    ``FEMOAT_FAST_INLINE=0``)."""
+    """Install the three into numba (once a process): the memo and the one-memo copy into
+    ``InlineWorker``, the copies dropped after ``InlineInlinables``. Returns whether they are
+    installed (False on an unknown numba, or when ``FEMOAT_FAST_INLINE=0``)."""
     if _installed:
         return True
     if os.environ.get("FEMOAT_FAST_INLINE", "1") == "0" or not supported():
