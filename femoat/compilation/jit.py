@@ -21,10 +21,19 @@ _started = []
 """The kernels whose numba dispatcher this process has made (compiled or loaded from the
 cache), in order."""
 
-OPTIONS = {"_nrt": False}
+OPTIONS = {"_nrt": False, "no_cfunc_wrapper": True}
 """Compile options for every kernel. No kernel allocates, so numba's reference-counted runtime
 is switched off: with it, every array passed between kernels (and every row view ``P[e]``)
-costs an atomic increment and decrement, a large share of the solver's run time."""
+costs an atomic increment and decrement, a large share of the solver's run time. No kernel is
+handed to C code, so numba's C-callable wrapper (``cfunc``) is not built."""
+
+INTERNAL = {"no_cpython_wrapper": True}
+"""More options for the version of a kernel that compiled kernels call: numba's wrapper that
+converts Python arguments is not built (a kernel taking the loop's bundles has a wrapper that
+unboxes a thousand values, which LLVM then optimizes and compiles again in every kernel that
+links it). The solver's entry points (:data:`femoat.compilation.exports.EXPORTS`) keep it: the
+solver calls them from Python; any other kernel called from Python goes through a version of
+its own (:attr:`Kernel.python_dispatcher`)."""
 
 
 def njit(*args, **options):
@@ -43,21 +52,53 @@ class Kernel:
         self.py_func = py_func
         self.options = options
         self._dispatcher = None
+        self._python_dispatcher = None
         functools.update_wrapper(self, py_func)
 
     @property
+    def exported(self):
+        """Whether this kernel is one of the solver's entry points, called from Python
+        (:data:`femoat.compilation.exports.EXPORTS`)."""
+        from femoat.compilation.exports import EXPORTS
+
+        return EXPORTS.get(self.py_func.__name__) == self.py_func.__module__
+
+    @property
     def dispatcher(self):
-        """The numba dispatcher (numba is imported and this function registered on first use)."""
+        """The numba dispatcher that compiled kernels call (numba is imported and this function
+        registered on first use); built without the Python-argument wrapper unless the kernel
+        is an entry point (:data:`INTERNAL`)."""
         if self._dispatcher is None:
             _register()
             _fresh_cache(self.py_func)
             import numba
 
-            self._dispatcher = numba.njit(**{**OPTIONS, **self.options})(self.py_func)
+            internal = {} if self.exported else INTERNAL
+            self._dispatcher = numba.njit(**{**OPTIONS, **internal, **self.options})(
+                self.py_func)
             if self.options.get("inline", "never") == "never":
                 _compile_for_types(self._dispatcher)
             _started.append(self)
         return self._dispatcher
+
+    @property
+    def python_dispatcher(self):
+        """The numba dispatcher of a call from Python: the entry points' :attr:`dispatcher`;
+        for any other kernel a dispatcher of its own, with the Python-argument wrapper, over a
+        copy of the function named ``<name>__python`` (its own index in numba's on-disk cache,
+        so that it never loads the wrapperless code of :attr:`dispatcher`, which has no entry
+        from Python). Tests and tools call inner kernels this way; the solver never does."""
+        if self.exported:
+            return self.dispatcher
+        if self._python_dispatcher is None:
+            _register()
+            _fresh_cache(self.py_func)
+            import numba
+
+            self._python_dispatcher = numba.njit(**{**OPTIONS, **self.options})(
+                _python_copy(self.py_func))
+            _started.append(self)
+        return self._python_dispatcher
 
     @property
     def targetoptions(self):
@@ -66,7 +107,7 @@ class Kernel:
         return self.dispatcher.targetoptions
 
     def __call__(self, *args):
-        return self.dispatcher(*args)
+        return self.python_dispatcher(*args)
 
     def retarget(self, py_func):
         """Make this kernel compile ``py_func`` instead (its name and arguments the same), as
@@ -82,6 +123,20 @@ class Kernel:
 
     def __repr__(self):
         return f"<femoat kernel {self.py_func.__module__}.{self.py_func.__qualname__}>"
+
+
+def _python_copy(func):
+    """``func`` under the name ``<qualname>__python``: the same code, globals and defaults (numba
+    names a function's cache index, and its compiled symbols, after the qualified name)."""
+    import types
+
+    copy = types.FunctionType(func.__code__, func.__globals__, func.__name__,
+                              func.__defaults__, func.__closure__)
+    copy.__kwdefaults__ = func.__kwdefaults__
+    copy.__qualname__ = f"{func.__qualname__}__python"
+    copy.__module__ = func.__module__
+    copy.__doc__ = func.__doc__
+    return copy
 
 
 def _compile_for_types(dispatcher):
