@@ -28,16 +28,17 @@ costs an atomic increment and decrement, a large share of the solver's run time.
 handed to C code, so numba's C-callable wrapper (``cfunc``) is not built."""
 
 INTERNAL = {"no_cpython_wrapper": True}
-"""More options for the version of a kernel that compiled kernels call: numba's wrapper that
-converts Python arguments is not built (a kernel taking the loop's bundles has a wrapper that
-unboxes a thousand values, which LLVM then optimizes and compiles again in every kernel that
-links it). The solver's entry points (:data:`femoat.compilation.exports.EXPORTS`) keep it: the
-solver calls them from Python; any other kernel called from Python goes through a version of
-its own (:attr:`Kernel.python_dispatcher`)."""
+"""More options for a kernel declared ``njit(python=False)``, one that only compiled kernels
+call: numba's wrapper converting Python arguments is not built. The kernels that take the
+loop's bundles are declared so: the wrapper of such a kernel unboxes about a thousand values,
+and LLVM optimizes and compiles it again in every kernel that links the kernel's code."""
 
 
 def njit(*args, **options):
-    """Like ``numba.njit`` (with or without options), compiled lazily; see the module docstring."""
+    """Like ``numba.njit`` (with or without options), compiled lazily; see the module docstring.
+    One more option, ``python=False``: the kernel is called from compiled code only
+    (:data:`INTERNAL`; a call from Python still works, through a copy of its own:
+    :attr:`Kernel.python_dispatcher`)."""
     if args and callable(args[0]) and len(args) == 1 and not options:
         return Kernel(args[0], {})
     if args:
@@ -49,31 +50,29 @@ class Kernel:
     """A Python function to be compiled by numba on first use."""
 
     def __init__(self, py_func, options):
+        options = dict(options)
+        python = options.pop("python", True)
+        if python not in (True, False):
+            raise TypeError(f"python = {python!r}: use True (the default) or False (a kernel "
+                            "that only compiled kernels call)")
         self.py_func = py_func
         self.options = options
+        self.python = python
         self._dispatcher = None
         self._python_dispatcher = None
         functools.update_wrapper(self, py_func)
 
     @property
-    def exported(self):
-        """Whether this kernel is one of the solver's entry points, called from Python
-        (:data:`femoat.compilation.exports.EXPORTS`)."""
-        from femoat.compilation.exports import EXPORTS
-
-        return EXPORTS.get(self.py_func.__name__) == self.py_func.__module__
-
-    @property
     def dispatcher(self):
         """The numba dispatcher that compiled kernels call (numba is imported and this function
-        registered on first use); built without the Python-argument wrapper unless the kernel
-        is an entry point (:data:`INTERNAL`)."""
+        registered on first use); without the Python-argument wrapper when declared
+        ``python=False`` (:data:`INTERNAL`)."""
         if self._dispatcher is None:
             _register()
             _fresh_cache(self.py_func)
             import numba
 
-            internal = {} if self.exported else INTERNAL
+            internal = {} if self.python else INTERNAL
             self._dispatcher = numba.njit(**{**OPTIONS, **internal, **self.options})(
                 self.py_func)
             if self.options.get("inline", "never") == "never":
@@ -83,12 +82,11 @@ class Kernel:
 
     @property
     def python_dispatcher(self):
-        """The numba dispatcher of a call from Python: the entry points' :attr:`dispatcher`;
-        for any other kernel a dispatcher of its own, with the Python-argument wrapper, over a
-        copy of the function named ``<name>__python`` (its own index in numba's on-disk cache,
-        so that it never loads the wrapperless code of :attr:`dispatcher`, which has no entry
-        from Python). Tests and tools call inner kernels this way; the solver never does."""
-        if self.exported:
+        """The numba dispatcher of a call from Python: :attr:`dispatcher`, or for a kernel
+        declared ``python=False`` a dispatcher of its own, with the wrapper, over a copy of the
+        function named ``<name>__python``: its own index in numba's on-disk cache, so that it
+        never loads the code of :attr:`dispatcher`, which has no entry from Python."""
+        if self.python:
             return self.dispatcher
         if self._python_dispatcher is None:
             _register()
@@ -183,9 +181,10 @@ def _register():
         return
     from numba.core.typing.typeof import typeof_impl
 
-    from femoat.compilation.inlining import install
+    from femoat.compilation import inlining, ssa
 
-    install()
+    inlining.install()
+    ssa.install()
 
     @typeof_impl.register(Kernel)
     def _typeof_kernel(value, context):

@@ -81,7 +81,7 @@ def _recorded_at(t, state, rec):
     return k > 0 and rec.t[row(k - 1, rec.t.shape[0])] == t
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def _record_end(t, model, state, work, settings, rec):
     """At the record's last sample (time ``t``), where the ground acceleration drops to zero:
     record that sample if a decimated record skipped it (the left limits), else restart from

@@ -28,7 +28,7 @@ H_START = 1e-3
 δ^(1/4)): restart at this fraction of the contact step and let the controller grow the step."""
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def restart(model, state, work):
     """Re-establish equilibrium accelerations after a contact event changed the forces.
 

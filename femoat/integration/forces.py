@@ -188,7 +188,7 @@ def _internal_force(u, v, model, state, work, out, want_tangent, nd, u0, v0, tau
                                 CT[i, j] += cf * b[i] * b[j]
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def _plan_bearings(u, v, model, b_S, b_f, F, KT, CT, k22, want_tangent, u0, v0, tau, b_rate,
                    b_z):
     """Each plan bearing's force and tangents at (u, v) from its committed state, scattered into

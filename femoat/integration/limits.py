@@ -134,7 +134,7 @@ def limit_quantity(code, k, n_struct, model, state):
     return abs(state.a[k] + state.ag_now[model.dof_axis[k]])  # ABSOLUTE_ACCELERATION
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def check_limits(t, n_struct, model, state, limits, first):
     """Record in ``first`` the time ``t`` at which each row of ``limits`` is first exceeded
     (−1: not yet); return RUNAWAY_EXCEEDED when a runaway row is exceeded now, else

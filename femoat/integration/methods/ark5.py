@@ -493,7 +493,7 @@ def _combine(s, hh, nb, state, work):
         work.v[i] = v0[i] + hh * sv
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def coupled_step(hh, ag1, model, state, settings, work):
     """The ARK5(4) trial step of length ``hh`` (ground acceleration ``ag1`` [in/s²] at its
     end) with the flagged bearings' friction states carried (``work.b_rate``, their committed
@@ -567,7 +567,7 @@ COUPLED = 2
 """The step is :func:`coupled_step`."""
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def plan(model, state, work):
     """Which step to take (:data:`DP5_STEP`, :data:`DP5_IF_STILL`, :data:`COUPLED`), the carried
     bearings flagged (:func:`_flag_carried`). The method's ``step`` is spread over
@@ -579,7 +579,7 @@ def plan(model, state, work):
     return DP5_IF_STILL if still else COUPLED
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def rates_vanish(model, state, work):
     """After dp5's step with the carried states held: their rate was zero at every stage (the
     step is then this method's step too)."""

@@ -30,7 +30,7 @@ def mark_last_sample(c, t, model, state, rec):
                                              state.c_d[c], contact_rate(model.c_B, c, state.v))[0]
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def sample_before_event(t, model, state, settings, rec):
     """Before an episode opens or closes at the committed state (time ``t`` > 0): record that
     state if it was skipped (``record_every`` > 1), so that the event has its sample."""
@@ -39,7 +39,7 @@ def sample_before_event(t, model, state, settings, rec):
         record_sample(t, model, state, settings, rec)
 
 
-@njit(cache=True)
+@njit(cache=True, python=False)
 def record_sample(t, model, state, settings, rec):
     """:func:`record` as a compiled function of its own: the loop and the events call one
     copy (inlined, each of its call sites compiled the recorder and the running peaks again)."""
