@@ -8,6 +8,10 @@
 * :mod:`~femoat.compilation.numba_cache`: drops numba's cached kernels compiled from other sources.
 * :mod:`~femoat.compilation.exports`: the solver's entry points, the namespace
   :func:`femoat.integration.solve.kernels` hands to the solver.
+* :mod:`~femoat.compilation.inlining` and :mod:`~femoat.compilation.ssa`: numba's inliner and
+  its SSA reconstruction made to cost what the code costs (the same IR, built once, walked
+  where it names a variable); installed with the first kernel, on the numba version they were
+  read against.
 
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.
