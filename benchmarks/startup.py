@@ -1,6 +1,6 @@
 """Start-up: what a fresh install and a new process pay before the solver runs.
 
-    python benchmarks/startup.py [--skip-cold]
+    python benchmarks/startup.py [--skip-cold] [--compare-inliner] [--compare-ssa]
 
 Prints, each in a fresh Python process:
 
@@ -16,7 +16,8 @@ Prints, each in a fresh Python process:
 
 ``--compare-inliner``: step 1 again with numba's own inliner (``FEMOAT_FAST_INLINE=0``:
 :mod:`femoat.compilation.inlining` not installed), side by side with femoat's (a few more
-minutes).
+minutes). ``--compare-ssa``: step 1 again with numba's own SSA reconstruction
+(``FEMOAT_FAST_SSA=0``: :mod:`femoat.compilation.ssa` not installed).
 
 Numbers go to docs/startup.md and the README; nothing here is asserted.
 """
@@ -103,6 +104,9 @@ def main(argv=None):
                     help="only the warm start (the cold compile takes minutes)")
     ap.add_argument("--compare-inliner", action="store_true",
                     help="also the cold compile with numba's own inliner (FEMOAT_FAST_INLINE=0)")
+    ap.add_argument("--compare-ssa", action="store_true",
+                    help="also the cold compile with numba's own SSA reconstruction "
+                         "(FEMOAT_FAST_SSA=0)")
     args = ap.parse_args(argv)
     base = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT),
                                                          os.environ.get("PYTHONPATH", "")])}
@@ -124,6 +128,14 @@ def main(argv=None):
                 own = json.loads(out.strip().splitlines()[-1])
                 print(f"   with numba's own inliner (FEMOAT_FAST_INLINE=0): {own['total']:.1f} s "
                       f"CPU ({wall:.1f} s wall); run_chunk {own['top'].get('run_chunk', 0):.1f} s")
+            if args.compare_ssa:
+                with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
+                    out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
+                                                "FEMOAT_FAST_SSA": "0"})
+                own = json.loads(out.strip().splitlines()[-1])
+                print(f"   with numba's own SSA reconstruction (FEMOAT_FAST_SSA=0): "
+                      f"{own['total']:.1f} s CPU ({wall:.1f} s wall); run_chunk "
+                      f"{own['top'].get('run_chunk', 0):.1f} s")
             print(f"2. a first plan run after it: {cold['plan_extra']:.1f} s CPU in all "
                   f"(kernels compiled for it: {cold['plan_kernels'] or 'none'})")
             (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, env))
