@@ -121,21 +121,17 @@ def main(argv=None):
             for name, cpu in sorted(cold["top"].items(), key=lambda kv: -kv[1]):
                 if cpu > 0.5:
                     print(f"     {name:28s}{cpu:8.1f} s")
-            if args.compare_inliner:
-                with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
-                    out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
-                                                "FEMOAT_FAST_INLINE": "0"})
-                own = json.loads(out.strip().splitlines()[-1])
-                print(f"   with numba's own inliner (FEMOAT_FAST_INLINE=0): {own['total']:.1f} s "
-                      f"CPU ({wall:.1f} s wall); run_chunk {own['top'].get('run_chunk', 0):.1f} s")
-            if args.compare_ssa:
-                with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
-                    out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
-                                                "FEMOAT_FAST_SSA": "0"})
-                own = json.loads(out.strip().splitlines()[-1])
-                print(f"   with numba's own SSA reconstruction (FEMOAT_FAST_SSA=0): "
-                      f"{own['total']:.1f} s CPU ({wall:.1f} s wall); run_chunk "
-                      f"{own['top'].get('run_chunk', 0):.1f} s")
+            for wanted, switch, what in ((args.compare_inliner, "FEMOAT_FAST_INLINE", "inliner"),
+                                         (args.compare_ssa, "FEMOAT_FAST_SSA",
+                                          "SSA reconstruction")):
+                if wanted:
+                    with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
+                        out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
+                                                    switch: "0"})
+                    own = json.loads(out.strip().splitlines()[-1])
+                    print(f"   with numba's own {what} ({switch}=0): {own['total']:.1f} s CPU "
+                          f"({wall:.1f} s wall); run_chunk "
+                          f"{own['top'].get('run_chunk', 0):.1f} s")
             print(f"2. a first plan run after it: {cold['plan_extra']:.1f} s CPU in all "
                   f"(kernels compiled for it: {cold['plan_kernels'] or 'none'})")
             (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, env))

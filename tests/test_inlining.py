@@ -58,13 +58,18 @@ def tree(xs, a, out):
         out[i] = level3(xs[i], a) + level3(-xs[i], a)
 '''
 
-DRIVER = '''
+LOAD_TREE = '''
 import json, sys, types, numpy as np
-mod = types.ModuleType("femoat._inline_tree")
+mod = types.ModuleType(TREE_MODULE)
 sys.modules[mod.__name__] = mod
-exec(compile(TREE, "<femoat-inline-tree>", "exec"), mod.__dict__)
+exec(compile(TREE, "<" + TREE_MODULE + ">", "exec"), mod.__dict__)
 for f in (mod.level0, mod.level1, mod.level2, mod.level3, mod.tree):
     f.py_func.__module__ = mod.__name__
+'''
+"""Code that makes ``TREE`` the module ``TREE_MODULE`` (a name under femoat: the memo keeps
+femoat's functions only), ``mod``, in a fresh process."""
+
+DRIVER = LOAD_TREE + '''
 xs = np.linspace(-3.0, 3.0, 41)
 a = np.array([0.3, -0.2, 0.7, 0.1])
 out = np.zeros_like(xs)
@@ -80,7 +85,7 @@ print(json.dumps({"out": out.tobytes().hex(), "a": a.tobytes().hex(),
 def _compile_tree(fast):
     env = {**os.environ, "FEMOAT_FAST_INLINE": "1" if fast else "0",
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
-    code = f"TREE = {TREE!r}\n" + DRIVER
+    code = f"TREE = {TREE!r}\nTREE_MODULE = 'femoat._inline_tree'\n" + DRIVER
     done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
                           text=True, timeout=600, check=False, cwd=ROOT)
     assert done.returncode == 0, done.stderr[-3000:]

@@ -116,12 +116,9 @@ def checked(blocks):
     return fast.run_ssa(blocks)
 
 ssa._run_ssa = checked
-from test_inlining import TREE
-mod = types.ModuleType("femoat._ssa_tree")
-sys.modules[mod.__name__] = mod
-exec(compile(TREE, "<femoat-ssa-tree>", "exec"), mod.__dict__)
-for f in (mod.level0, mod.level1, mod.level2, mod.level3, mod.tree):
-    f.py_func.__module__ = mod.__name__
+from test_inlining import LOAD_TREE, TREE
+TREE_MODULE = "femoat._ssa_tree"
+exec(LOAD_TREE)
 xs = np.linspace(-3.0, 3.0, 41)
 mod.tree(xs, np.array([0.3, -0.2, 0.7, 0.1]), np.zeros_like(xs))
 print(json.dumps(seen))
