@@ -181,10 +181,13 @@ def _register():
         return
     from numba.core.typing.typeof import typeof_impl
 
-    from femoat.compilation import inlining, ssa
+    from femoat.compilation import call_types, flags, inlining, liveness, ssa
 
     inlining.install()
     ssa.install()
+    liveness.install()
+    flags.install()
+    call_types.install()
 
     @typeof_impl.register(Kernel)
     def _typeof_kernel(value, context):
