@@ -8,10 +8,13 @@
 * :mod:`~femoat.compilation.numba_cache`: drops numba's cached kernels compiled from other sources.
 * :mod:`~femoat.compilation.exports`: the solver's entry points, the namespace
   :func:`femoat.integration.solve.kernels` hands to the solver.
-* :mod:`~femoat.compilation.inlining` and :mod:`~femoat.compilation.ssa`: numba's inliner and
-  its SSA reconstruction made to cost what the code costs (the same IR, built once, walked
-  where it names a variable); installed with the first kernel, on the numba version they were
-  read against.
+* :mod:`~femoat.compilation.inlining`, :mod:`~femoat.compilation.ssa`,
+  :mod:`~femoat.compilation.liveness`, :mod:`~femoat.compilation.call_types` and
+  :mod:`~femoat.compilation.flags`: numba's inliner, SSA reconstruction, liveness analysis,
+  call typing and compile flags made to cost what the code costs (the same IR, built once,
+  walked where it names a variable; live sets once per loop; a call's types resolved once);
+  installed with the first kernel, on the numba version they were read against, each with a
+  switch that leaves numba's own.
 
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.
