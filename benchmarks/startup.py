@@ -1,6 +1,7 @@
 """Start-up: what a fresh install and a new process pay before the solver runs.
 
     python benchmarks/startup.py [--skip-cold] [--compare-inliner] [--compare-ssa]
+                                 [--compare-typing]
 
 Prints, each in a fresh Python process:
 
@@ -17,7 +18,11 @@ Prints, each in a fresh Python process:
 ``--compare-inliner``: step 1 again with numba's own inliner (``FEMOAT_FAST_INLINE=0``:
 :mod:`femoat.compilation.inlining` not installed), side by side with femoat's (a few more
 minutes). ``--compare-ssa``: step 1 again with numba's own SSA reconstruction
-(``FEMOAT_FAST_SSA=0``: :mod:`femoat.compilation.ssa` not installed).
+(``FEMOAT_FAST_SSA=0``: :mod:`femoat.compilation.ssa` not installed). ``--compare-typing``:
+step 1 again with numba's own liveness analysis, call typing and flags
+(``FEMOAT_FAST_LIVENESS=0 FEMOAT_CALL_TYPES_MEMO=0 FEMOAT_FAST_FLAGS=0``:
+:mod:`femoat.compilation.liveness`, :mod:`~femoat.compilation.call_types` and
+:mod:`~femoat.compilation.flags` not installed).
 
 Numbers go to docs/startup.md and the README; nothing here is asserted.
 """
@@ -107,6 +112,10 @@ def main(argv=None):
     ap.add_argument("--compare-ssa", action="store_true",
                     help="also the cold compile with numba's own SSA reconstruction "
                          "(FEMOAT_FAST_SSA=0)")
+    ap.add_argument("--compare-typing", action="store_true",
+                    help="also the cold compile with numba's own liveness analysis, call "
+                         "typing and flags (FEMOAT_FAST_LIVENESS=0 FEMOAT_CALL_TYPES_MEMO=0 "
+                         "FEMOAT_FAST_FLAGS=0)")
     args = ap.parse_args(argv)
     base = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT),
                                                          os.environ.get("PYTHONPATH", "")])}
@@ -121,16 +130,18 @@ def main(argv=None):
             for name, cpu in sorted(cold["top"].items(), key=lambda kv: -kv[1]):
                 if cpu > 0.5:
                     print(f"     {name:28s}{cpu:8.1f} s")
-            for wanted, switch, what in ((args.compare_inliner, "FEMOAT_FAST_INLINE", "inliner"),
-                                         (args.compare_ssa, "FEMOAT_FAST_SSA",
-                                          "SSA reconstruction")):
+            typing = ("FEMOAT_FAST_LIVENESS", "FEMOAT_CALL_TYPES_MEMO", "FEMOAT_FAST_FLAGS")
+            for wanted, switches, what in (
+                    (args.compare_inliner, ("FEMOAT_FAST_INLINE",), "inliner"),
+                    (args.compare_ssa, ("FEMOAT_FAST_SSA",), "SSA reconstruction"),
+                    (args.compare_typing, typing, "liveness, call typing and flags")):
                 if wanted:
+                    off = dict.fromkeys(switches, "0")
                     with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
-                        out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain,
-                                                    switch: "0"})
+                        out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain, **off})
                     own = json.loads(out.strip().splitlines()[-1])
-                    print(f"   with numba's own {what} ({switch}=0): {own['total']:.1f} s CPU "
-                          f"({wall:.1f} s wall); run_chunk "
+                    print(f"   with numba's own {what} ({'=0 '.join(switches)}=0): "
+                          f"{own['total']:.1f} s CPU ({wall:.1f} s wall); run_chunk "
                           f"{own['top'].get('run_chunk', 0):.1f} s")
             print(f"2. a first plan run after it: {cold['plan_extra']:.1f} s CPU in all "
                   f"(kernels compiled for it: {cold['plan_kernels'] or 'none'})")

@@ -72,6 +72,19 @@ import sys  # noqa: E402
 
 import pytest  # noqa: E402
 
+
+@pytest.fixture
+def no_figures(monkeypatch):
+    """A suite report without its figures, for the tests reading its tables and README only: a
+    report's figures take two thirds of its time; they are drawn and checked by
+    tests/test_suite_report.py (the synthetic IDA, stripes, a messy suite, four variations),
+    test_suite_methods.py (every scaling method through the command line) and
+    test_suite_pounding.py."""
+    from femoat.suite import report_figures
+
+    monkeypatch.setattr(report_figures, "write_figures", lambda *args, **kwargs: [])
+
+
 _ROOT = Path(__file__).resolve().parents[1]
 RENDER_ENV = {**os.environ, "VTK_DEFAULT_OPENGL_WINDOW": "vtkEGLRenderWindow",
               "PYTHONPATH": os.pathsep.join([str(_ROOT), os.environ.get("PYTHONPATH", "")])}

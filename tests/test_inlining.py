@@ -184,3 +184,28 @@ def test_a_copy_is_dropped_only_where_both_names_are_assigned_once():
 
     f.__module__ = "femoat._copy_check"
     assert njit(f)(0.5, np.array([5.0]), 3) == 11.0
+
+
+def test_a_callee_copy_keeps_its_source_locations_and_other_copies_do_not():
+    # While inline_ir copies a callee (one memo for the whole IR), a location is kept as it is
+    # (numba keeps a variable's, a constant's and a free variable's); any other deep copy
+    # makes an equal new one, with its own fields.
+    import copy
+
+    from numba.core import ir
+
+    from femoat.compilation import inlining, jit
+
+    jit._register()
+    if not inlining.enabled():
+        pytest.skip("femoat's inliner is not installed on this numba")
+    loc = ir.Loc("kernel.py", 12, col=4)
+    loc.lines = ["a = 1\n"] * 3
+    inlining._session.memo = {}
+    try:
+        assert copy.deepcopy(loc) is loc
+    finally:
+        inlining._session.memo = None
+    other = copy.deepcopy(loc)
+    assert other is not loc and other == loc and other.lines == loc.lines
+    assert other.lines is not loc.lines

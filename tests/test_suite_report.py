@@ -109,16 +109,6 @@ def ida_report(tmp_path_factory):
     return folder, write_report(synthetic_ida(), META, folder)
 
 
-@pytest.fixture
-def no_figures(monkeypatch):
-    """The report without its figures, for the tests reading its tables and README only: a
-    report's figures take two thirds of its time, and those of the synthetic IDA are drawn and
-    checked by test_ida_report_numbers_equal_closed_forms (the same table)."""
-    from femoat.suite import report_figures
-
-    monkeypatch.setattr(report_figures, "write_figures", lambda *args, **kwargs: [])
-
-
 def test_ida_report_numbers_equal_closed_forms(ida_report):
     tmp_path, paths = ida_report
     s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
@@ -166,7 +156,7 @@ def test_ida_report_numbers_equal_closed_forms(ida_report):
     assert "collapse_summary.csv" in readme and "fragility.png" in readme
 
 
-def test_solver_failure_policy_collapse_counts_failures_as_collapses(tmp_path):
+def test_solver_failure_policy_collapse_counts_failures_as_collapses(tmp_path, no_figures):
     write_report(synthetic_ida(), {**META, "solver_failure": "collapse"}, tmp_path)
     s = pd.read_csv(tmp_path / "collapse_summary.csv").set_index("walls.law")
     # E's record 1 now collapses at its 0.3 g failure instead of at 1.0·e^(0.4 q_1) = 0.51 g;
@@ -242,7 +232,8 @@ def test_ida_levels_carry_collapsed_records_forward(ida_report):
     assert r["n_collapsed"] == np.sum(Q <= np.log(1.6 / 1.5) / BETA)
 
 
-def test_hunt_and_fill_ida_takes_each_records_run_nearest_the_levels(tmp_path):
+def test_hunt_and_fill_ida_takes_each_records_run_nearest_the_levels(tmp_path,
+                                                                       no_figures):
     write_report(synthetic_ida(), {**META, "hunt_fill": True}, tmp_path)
     resp = pd.read_csv(tmp_path / "response_by_variation.csv")
     # levels S_MT·(0.5, 1, 1.5, 2, 3) = 0.3, 0.6, 0.9, 1.2, 1.8 g; at 0.3 g no grid run lies

@@ -258,9 +258,10 @@ def _verdict_table(stdout):
     return [dict(zip(heads, r[:12]), verdict=" ".join(r[12:])) for r in rows[1:]]
 
 
-def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys):
+def test_femoat_suite_command_writes_the_table_and_the_report(tmp_path, capsys, no_figures):
     # the command a user runs: the runs, then the report in OUT/report (IDA stripes at 0.5 and
-    # 1.5 g for 3 records x 2 laws = 12 runs)
+    # 1.5 g for 3 records x 2 laws = 12 runs); the report's tables and README, written five
+    # times here (its figures: tests/test_suite_methods.py, through the same command)
     from femoat.cli import main
 
     out, path = tmp_path / "out", _suite(tmp_path)
@@ -349,14 +350,15 @@ def test_headline_suite_runs_to_collapse_and_reports(tmp_path):
 
 def test_ctrl_c_on_a_dask_suite_prints_one_line_and_no_traceback(tmp_path):
     # Ctrl-C on a terminal sends SIGINT to the whole process group: the CLI and its local Dask
-    # workers. Full records, one run per task, 3 records x 5 laws x 6 levels = 90 runs: long
-    # enough to interrupt after the first parts.
+    # worker (one: a second would only start another process). Full records, one run per
+    # task, 3 records x 5 laws x 6 levels = 90 runs: long enough to interrupt after the first
+    # parts.
     text = SMALL.replace("duration = {duration}\n", "").replace(
         '["E", "H"]', '["E", "V", "J", "H", "M"]').replace(
         "[0.5, 1.5]", "[0.5, 0.75, 1.0, 1.25, 1.5, 2.0]")
     path = _suite(tmp_path, text, batch=1)
     out = tmp_path / "out"
-    proc = _cli([path, "--workers", "2", "--out", out], start_new_session=True)
+    proc = _cli([path, "--workers", "1", "--out", out], start_new_session=True)
     deadline = time.monotonic() + 180
     while time.monotonic() < deadline and proc.poll() is None:
         if len(list(out.glob("runs/part-*.parquet"))) >= 1:

@@ -105,11 +105,12 @@ def _key(function, context, args, kws):
 
 
 def _frozen(flags):
-    """The values of ``flags`` as a hashable tuple: an option whose value cannot be hashed (numba's
-    option objects: fastmath, inline, parallel) by its type and ``repr``, which shows every
-    field."""
-    frozen = []
-    for name, value in flags.values().items():
+    """The options set on ``flags`` (the others are their class's defaults), by name, as a
+    hashable tuple with the flags' class: equal tuples, equal flags. An option whose value
+    cannot be hashed (numba's option objects: fastmath, inline, parallel) by its type and
+    ``repr``, which shows every field."""
+    frozen = [type(flags)]
+    for name, value in sorted(flags._values.items(), key=lambda item: item[0]):
         try:
             hash(value)
         except TypeError:

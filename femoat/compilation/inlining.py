@@ -19,7 +19,8 @@ that grow with the number of call sites rather than with the code:
    copied once per block, and compared once per block when the scopes are gathered:
    quadratic in the function's size. :func:`_one_scope_copy` copies a whole IR with one memo
    while ``inline_ir`` runs (the blocks share one scope, as in the original), which is what
-   each per-block copy would give less the duplicates.
+   each per-block copy would give less the duplicates; the copy keeps the callee's source
+   locations (:func:`_loc_deepcopy`).
 3. **the inlined calls' argument copies**: inlining makes each parameter of the callee a copy
    of the caller's argument (``param = arg``); femoat's helpers take the loop's bundles
    (tuples of ~30 arrays each), so every inlined call copied hundreds of values into new
@@ -85,6 +86,8 @@ def install():
     worker.run_untyped_passes = _memo_untyped_passes(worker.run_untyped_passes)
     worker.inline_ir = _one_scope_copy(worker.inline_ir)
     ir.Block.__deepcopy__ = _block_deepcopy
+    if "__deepcopy__" not in vars(ir.Loc):
+        ir.Loc.__deepcopy__ = _loc_deepcopy
     from numba.core.untyped_passes import InlineInlinables
 
     InlineInlinables.run_pass = _then_drop_aliases(InlineInlinables.run_pass)
@@ -154,6 +157,22 @@ def _block_deepcopy(self, memo):
     done = memo.get(id(self))
     if done is not None:
         return done
+    out = type(self).__new__(type(self))
+    memo[id(self)] = out
+    copy._keep_alive(self, memo)
+    out.__dict__.update(copy.deepcopy(self.__dict__, memo))
+    return out
+
+
+def _loc_deepcopy(self, memo):
+    """``copy.deepcopy`` of a source location: the location itself while ``inline_ir`` copies a
+    callee (as numba's own copies of a variable, a constant or a free variable keep theirs: a
+    location is never changed, and its copy would carry the source file's lines once they
+    have been read for a message), else a copy as Python's default makes it."""
+    import copy
+
+    if getattr(_session, "memo", None) is not None:
+        return self
     out = type(self).__new__(type(self))
     memo[id(self)] = out
     copy._keep_alive(self, memo)
