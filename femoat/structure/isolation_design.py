@@ -78,14 +78,18 @@ def effective_properties(bearing, amplitude, cycles=2):
     # a bearing whose one-axis state ends with the step's duration reads it there
     # (femoat.structure.materials.kernels.DURATION): each step taken at that speed
     timed = registry.reads_duration(registry.kinds()[kind], p)
+    # numba's dispatchers called straight, without the lookup a femoat kernel's own call
+    # makes every time (thousands of calls a cycle)
+    trial, commit = (getattr(k, "python_dispatcher", k) for k in (mod.axis_trial,
+                                                                   mod.axis_commit))
     force = np.empty(path.size)
     prev = 0.0
     for i, u in enumerate(path):
         v = math.copysign(speed, u - prev) if u != prev else 0.0
         if timed:
             s[-1] = abs(u - prev) / speed
-        force[i] = mod.axis_trial(p, s, u, v)[0]
-        mod.axis_commit(p, s, u, v)
+        force[i] = trial(p, s, u, v)[0]
+        commit(p, s, u, v)
         prev = u
     last = slice(path.size - down.size - up.size - 1, path.size)
     loop = float(np.trapezoid(force[last], path[last]))  # the cycle encloses its loop once
