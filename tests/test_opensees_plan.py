@@ -55,8 +55,9 @@ def test_along_x_it_is_the_1d_twin():
     model_1d = paper_model("steel", "J")
     plan = PlanModel(PlanBuilding.from_building(model_1d.building),
                      rectangular_moat("steel", "J"))
-    ours = opensees_plan_run(plan, RecordPair(gm, zero_like(gm)), 2e-4, duration=4.5)
-    theirs = opensees_run(model_1d, gm, 2e-4, duration=4.5)
+    # (a step of 5e-4 s: the claim is step for step, at any step both converge at)
+    ours = opensees_plan_run(plan, RecordPair(gm, zero_like(gm)), 5e-4, duration=4.5)
+    theirs = opensees_run(model_1d, gm, 5e-4, duration=4.5)
     assert ours["bearing_normal_force"] == pytest.approx(33.0, rel=1e-12)  # N = W
     assert theirs["peaks"]["impacts_pos"] + theirs["peaks"]["impacts_neg"] == 3  # real impacts
     base = theirs["base_displacement"]
@@ -109,7 +110,7 @@ def test_diagonal_excitation_in_a_square_moat_hits_two_walls_at_once():
     # contacts carry the same force throughout (likewise −x and −y).
     gm = first_seconds(paper_motion(), 4.0)
     model = PlanModel(walls=rectangular_moat("steel", "J", gap=2.5))
-    run = opensees_plan_run(model, RecordPair(gm, gm), 2e-4, duration=4.5)
+    run = opensees_plan_run(model, RecordPair(gm, gm), 5e-4, duration=4.5)  # (any step)
     u = run["base_displacement"]
     assert np.abs(u[:, 0] - u[:, 1]).max() <= 1e-9 * np.abs(u).max()
     floors = run["floor_displacement"]

@@ -298,12 +298,14 @@ def test_bad_workers_are_refused_by_name(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_on_dask_the_suites_share_one_local_cluster(study, tmp_path, monkeypatch):
+def test_on_dask_the_suites_share_one_local_cluster(tmp_path, monkeypatch):
     # Not serial: both suites of the study run on one local cluster (started once, its worker
     # loading the compiled loop once), and every run is the serial run's: the same table, to
-    # the printed digits and in every stored number.
+    # the printed digits and in every stored number. On a smaller quick study (one pair, one
+    # law), run both ways here.
     from femoat.suite import execute
 
+    monkeypatch.setattr(bd, "QUICK", {"ids": [6], "laws": ("H",)})
     started = []
     real = execute.local_cluster
 
@@ -314,13 +316,17 @@ def test_on_dask_the_suites_share_one_local_cluster(study, tmp_path, monkeypatch
             yield address
 
     monkeypatch.setattr(execute, "local_cluster", counted)
-    out = tmp_path / "bidirectional"
-    printed = io.StringIO()
-    with contextlib.redirect_stdout(printed), contextlib.redirect_stderr(io.StringIO()):
-        code = main(["study", "bidirectional", "--quick", "--workers", "1", "--out", str(out)])
-    assert code == 0
+    printed = {}
+    for how in ("--serial", "--workers"):
+        out = tmp_path / how.strip("-")
+        buffer = io.StringIO()
+        with contextlib.redirect_stdout(buffer), contextlib.redirect_stderr(io.StringIO()):
+            code = main(["study", "bidirectional", "--quick", how,
+                         *(["1"] if how == "--workers" else []), "--out", str(out)])
+        assert code == 0
+        printed[how] = buffer.getvalue().replace(str(out), "OUT")
     assert len(started) == 1
-    serial_out, serial_printed = study
-    assert printed.getvalue() == serial_printed.replace(str(serial_out), str(out))
-    pd.testing.assert_frame_equal(pd.read_csv(out / "table.csv"),
-                                  pd.read_csv(serial_out / "table.csv"))
+    assert printed["--workers"] == printed["--serial"]
+    table = pd.read_csv(tmp_path / "workers" / "table.csv")
+    assert len(table) == len(bd.WALLS) * len(bd.CASES) and set(table["law"]) == {"H"}
+    pd.testing.assert_frame_equal(table, pd.read_csv(tmp_path / "serial" / "table.csv"))
