@@ -155,42 +155,37 @@ def shear_chain(weights, ks):
 #   priority (nice 5), which the workers and the process below inherit: the compile keeps a
 #   core to itself; a worker takes its priority back once the compile is done;
 # - the tests are ordered: first those that never use the building solver (SOLVER_FREE,
-#   each checked by running it while another process held the lock; not the files whose tests
-#   call the loop's own kernels from Python, the bearings', materials' and contact laws': run
+#   each checked by running it while another process held the lock; not the tests that call
+#   the loop's own kernels from Python, the bearings', materials' and contact laws' files, the
+#   isolators' design, the single-impact and wall-coupling tests through the contact laws: run
 #   before the compile has cached those kernels they compiled them a second time beside it, 40 s
-#   of a fresh clone's session; after it they load them), then the solver files
+#   of a fresh clone's session at stop 44, more found at stop 45 by running each solver-free
+#   test alone on an empty cache; after it they load them), then the solver files
 #   that take seconds, longest first (HEAVY_FIRST), then the rest; a worker's first solver
 #   test waits for the lock and loads the kernels;
 # - they are handed out by work stealing: neither worker idles while the other has a queue;
 # - beside the workers a process started by the controller computes the OpenSees twins that
 #   solver tests compare against (AHEAD), so that these too run while the solver compiles.
 # Warm (the kernels in numba's cache) all of this still holds, the compile a second's load.
-SOLVER_FREE = ("test_atomic.py", "test_ground_motions_fema.py",
-               "test_ground_motions_peer.py", "test_ground_motions_record.py",
-               "test_ground_motions_spectrum.py", "test_imports.py", "test_isolation_design.py",
-               "test_materials_opensees.py", "test_numba_cache.py",
-               "test_opensees_plan.py", "test_opensees_single_impact.py",
-               "test_optional_dependencies.py", "test_plan_figures.py",
-               "test_plan_model.py", "test_plan_results.py", "test_plotting_drift.py",
-               "test_readers_fuzz.py", "test_record_pair.py", "test_repository.py",
-               "test_scenario_defaults.py", "test_scenario_strict.py", "test_single_impact.py",
-               "test_suite_definition.py", "test_suite_fragility.py", "test_suite_huntfill.py",
-               "test_suite_pounding.py", "test_suite_progress.py", "test_suite_record_rule.py",
-               "test_suite_report.py", "test_wall_fe_beam.py", "test_wall_fe_calibrate.py",
-               "test_wall_fe_cli.py", "test_wall_fe_io.py", "test_wall_fe_models.py",
-               "test_wall_fe_render.py", "test_wall_kinds.py",
+SOLVER_FREE = ("test_atomic.py", "test_ground_motions_fema.py", "test_ground_motions_peer.py",
+               "test_ground_motions_record.py", "test_ground_motions_spectrum.py",
+               "test_imports.py", "test_numba_cache.py", "test_opensees_plan.py",
+               "test_optional_dependencies.py", "test_plan_figures.py", "test_plan_model.py",
+               "test_plan_results.py", "test_plotting_drift.py", "test_readers_fuzz.py",
+               "test_record_pair.py", "test_repository.py", "test_scenario_defaults.py",
+               "test_scenario_strict.py", "test_suite_definition.py", "test_suite_fragility.py",
+               "test_suite_huntfill.py", "test_suite_pounding.py", "test_suite_progress.py",
+               "test_suite_record_rule.py", "test_suite_report.py", "test_wall_fe_beam.py",
+               "test_wall_fe_calibrate.py", "test_wall_fe_cli.py", "test_wall_fe_io.py",
+               "test_wall_fe_models.py", "test_wall_fe_render.py", "test_wall_kinds.py",
                # and the solver-free tests of the other files that take a second or more
                "test_opensees_plan_walls.py::test_plan_twin_with_modal_walls_along_x_is_the_1d_twin",
                "test_opensees_plan_walls.py::test_rescaled_modes_are_the_same_wall",
-               "test_paper_study.py::test_contact_curves_cli_writes_png_and_csv",
                "test_plan_render.py::test_a_frame_draws_the_wall_labels_and_the_axes",
                "test_plan_render.py::test_plan_animation_flashes_the_wall_in_contact",
                "test_plan_suite.py::test_each_kind_of_suite_gets_its_own_columns_and_every_shared_one",
                "test_scenario_plan.py::test_the_example_plan_file_is_the_paper_building_at_the_mce",
-               "test_study_bidirectional.py::test_quick_scales_its_pairs_as_the_full_study_does",
-               "test_study_isolators.py::test_the_isolators_share_one_mce_displacement",
-               "test_wall_coupling.py::test_damped_fe_and_modal_walls_agree",
-               "test_wall_coupling.py::test_modal_wall_converges_to_the_fe_wall")
+               "test_study_bidirectional.py::test_quick_scales_its_pairs_as_the_full_study_does")
 HEAVY_FIRST = ("test_study_bidirectional.py", "test_study_isolators.py", "test_suite_run.py",
                "test_render_runs.py", "test_suite_methods.py", "test_suite_cluster.py",
                "test_plan_ark5.py", "test_peak_accuracy.py", "test_examples.py",
