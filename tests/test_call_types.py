@@ -166,8 +166,9 @@ print(json.dumps([v.hex(), len(body), hash(body)]))
             for extra in ({}, {"FEMOAT_CALL_TYPES_MEMO": "0"})]
     for r in runs:
         assert r.returncode == 0, r.stderr[-2000:]
-    from femoat.compilation.call_types import supported
+    from femoat.compilation.call_types import NUMBA_VERSIONS
+    from femoat.compilation.numba_version import supported
 
     (installed, ours), (off, theirs) = (r.stdout.strip().splitlines()[-2:] for r in runs)
-    assert (installed, off) == (str(supported()), "False")
+    assert (installed, off) == (str(supported(NUMBA_VERSIONS)), "False")
     assert ours == theirs

@@ -11,14 +11,8 @@ worked by hand, and on flags with and without options set; the solver's stored f
 """
 
 import copy
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def _functions():
@@ -132,19 +126,3 @@ def test_flags_values_hash_and_equality_are_numbas():
         assert list(f.values().items()) == list(numbas(f).items())  # keys, order and values
     assert set_ == same and set_ != plain and hash(set_) == hash(same)
     assert plain.values()["nrt"] is numbas(plain)["nrt"]  # an unset option: its default
-
-
-def test_installed_with_femoats_kernels_and_off_with_the_switches():
-    code = ("from femoat.compilation import jit, liveness, flags; jit._register(); "
-            "print(bool(liveness._installed), bool(flags._installed))")
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get(
-        "PYTHONPATH", "")])}
-    on = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
-                        check=True)
-    off = subprocess.run([sys.executable, "-c", code], env={
-        **env, "FEMOAT_FAST_LIVENESS": "0", "FEMOAT_FAST_FLAGS": "0"}, capture_output=True,
-        text=True, check=True)
-    from femoat.compilation.liveness import supported
-
-    assert on.stdout.split() == [str(supported())] * 2
-    assert off.stdout.split() == ["False"] * 2

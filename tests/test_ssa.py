@@ -80,21 +80,6 @@ def test_a_function_without_violators_is_returned_as_it_is():
     assert run_ssa(blocks) is blocks  # as numba's: nothing to rename, the same blocks
 
 
-def test_installed_with_femoats_kernels_and_off_with_the_switch():
-    code = ("from femoat.compilation import jit, ssa; jit._register(); "
-            "import numba.core.ssa as s; print(s._run_ssa is ssa.run_ssa)")
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get(
-        "PYTHONPATH", "")])}
-    on = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
-                        check=True)
-    off = subprocess.run([sys.executable, "-c", code], env={**env, "FEMOAT_FAST_SSA": "0"},
-                         capture_output=True, text=True, check=True)
-    from femoat.compilation.ssa import supported
-
-    assert on.stdout.split() == [str(supported())]
-    assert off.stdout.split() == ["False"]
-
-
 CHECKED = """
 import copy, json, os, sys, tempfile, types
 import numpy as np

@@ -14,7 +14,7 @@
   call typing and compile flags made to cost what the code costs (the same IR, built once,
   walked where it names a variable; live sets once per loop; a call's types resolved once);
   installed with the first kernel, on the numba version they were read against, each with a
-  switch that leaves numba's own.
+  switch that leaves numba's own (both decided in :mod:`~femoat.compilation.numba_version`).
 
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.

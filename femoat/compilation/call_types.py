@@ -22,7 +22,7 @@ on the numba versions whose ``types.functions`` module was read and tested
 (:data:`NUMBA_VERSIONS`); ``FEMOAT_CALL_TYPES_MEMO=0`` leaves numba's own.
 """
 
-import os
+from femoat.compilation import numba_version
 
 NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose ``BaseFunction.get_call_type`` this module was
@@ -34,22 +34,13 @@ _STATE = ("_compiled_overloads", "_inline_overloads")
 """The template attributes keyed by a signature's argument types that resolving a call sets."""
 
 
-def supported():
-    """Whether this numba's ``BaseFunction.get_call_type`` is one :func:`get_call_type` knows."""
-    import numba
-
-    version = tuple(int(x) for x in numba.__version__.split(".")[:2])
-    low, high = NUMBA_VERSIONS
-    return low <= version <= high
-
-
 def install():
     """Make numba's ``BaseFunction.get_call_type`` :func:`get_call_type` (once a process).
     Returns whether it is installed (False on an unknown numba, or with
     ``FEMOAT_CALL_TYPES_MEMO=0``)."""
     if _installed:
         return True
-    if os.environ.get("FEMOAT_CALL_TYPES_MEMO", "1") == "0" or not supported():
+    if not numba_version.wanted("FEMOAT_CALL_TYPES_MEMO", NUMBA_VERSIONS):
         return False
     from numba.core.types.functions import BaseFunction
 

@@ -16,7 +16,7 @@ on the numba versions whose ``targetconfig`` module was read and tested
 (:data:`NUMBA_VERSIONS`); ``FEMOAT_FAST_FLAGS=0`` leaves numba's own.
 """
 
-import os
+from femoat.compilation import numba_version
 
 NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose ``TargetConfig`` this module was read and
@@ -26,21 +26,12 @@ _installed = []
 _defaults = {}
 
 
-def supported():
-    """Whether this numba's ``TargetConfig`` is one :func:`values` knows."""
-    import numba
-
-    version = tuple(int(x) for x in numba.__version__.split(".")[:2])
-    low, high = NUMBA_VERSIONS
-    return low <= version <= high
-
-
 def install():
     """Make numba's ``TargetConfig.values`` :func:`values` (once a process). Returns whether it
     is installed (False on an unknown numba, or with ``FEMOAT_FAST_FLAGS=0``)."""
     if _installed:
         return True
-    if os.environ.get("FEMOAT_FAST_FLAGS", "1") == "0" or not supported():
+    if not numba_version.wanted("FEMOAT_FAST_FLAGS", NUMBA_VERSIONS):
         return False
     from numba.core.targetconfig import TargetConfig
 

@@ -39,8 +39,9 @@ version numba runs unchanged (slower to compile, the same results), and
 """
 
 import collections
-import os
 import threading
+
+from femoat.compilation import numba_version
 
 NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose ``InlineWorker`` this module was read and
@@ -50,17 +51,9 @@ _installed = []
 _session = threading.local()
 
 
-def _numba_version():
-    import numba
-
-    major, minor = numba.__version__.split(".")[:2]
-    return int(major), int(minor)
-
-
 def supported():
     """Whether this numba's inliner is one :func:`install` knows."""
-    low, high = NUMBA_VERSIONS
-    return low <= _numba_version() <= high
+    return numba_version.supported(NUMBA_VERSIONS)
 
 
 def enabled():
@@ -74,7 +67,7 @@ def install():
     installed (False on an unknown numba, or when ``FEMOAT_FAST_INLINE=0``)."""
     if _installed:
         return True
-    if os.environ.get("FEMOAT_FAST_INLINE", "1") == "0" or not supported():
+    if not numba_version.wanted("FEMOAT_FAST_INLINE", NUMBA_VERSIONS):
         return False
     import numba.core.inline_closurecall as icc
     from numba.core import ir
@@ -149,14 +142,19 @@ def _block_deepcopy(self, memo):
     """``copy.deepcopy`` of a block, as Python's default does it, with the memo of the
     :func:`_one_scope_copy` call in progress when there is one: the blocks of one IR copied
     one by one then share their copies (one scope, one copy of each variable)."""
-    import copy
-
     shared = getattr(_session, "memo", None)
     if shared is not None:
         memo = shared
     done = memo.get(id(self))
     if done is not None:
         return done
+    return _default_deepcopy(self, memo)
+
+
+def _default_deepcopy(self, memo):
+    """``copy.deepcopy`` of an object with a ``__dict__``, as Python's default makes it."""
+    import copy
+
     out = type(self).__new__(type(self))
     memo[id(self)] = out
     copy._keep_alive(self, memo)
@@ -169,15 +167,9 @@ def _loc_deepcopy(self, memo):
     callee (as numba's own copies of a variable, a constant or a free variable keep theirs: a
     location is never changed, and its copy would carry the source file's lines once they
     have been read for a message), else a copy as Python's default makes it."""
-    import copy
-
     if getattr(_session, "memo", None) is not None:
         return self
-    out = type(self).__new__(type(self))
-    memo[id(self)] = out
-    copy._keep_alive(self, memo)
-    out.__dict__.update(copy.deepcopy(self.__dict__, memo))
-    return out
+    return _default_deepcopy(self, memo)
 
 
 # ---- 3. the inlined calls' argument copies --------------------------------------------------

@@ -20,8 +20,9 @@ on the numba versions whose ``analysis`` module was read and tested (:data:`NUMB
 ``FEMOAT_FAST_LIVENESS=0`` leaves numba's own.
 """
 
-import os
 from collections import defaultdict
+
+from femoat.compilation import numba_version
 
 NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose ``compute_live_map`` this module was read and
@@ -30,21 +31,12 @@ tested against (both ends included)."""
 _installed = []
 
 
-def supported():
-    """Whether this numba's liveness analysis is one :func:`compute_live_map` knows."""
-    import numba
-
-    version = tuple(int(x) for x in numba.__version__.split(".")[:2])
-    low, high = NUMBA_VERSIONS
-    return low <= version <= high
-
-
 def install():
     """Make numba's liveness analysis use :func:`compute_live_map` (once a process). Returns
     whether it is installed (False on an unknown numba, or with ``FEMOAT_FAST_LIVENESS=0``)."""
     if _installed:
         return True
-    if os.environ.get("FEMOAT_FAST_LIVENESS", "1") == "0" or not supported():
+    if not numba_version.wanted("FEMOAT_FAST_LIVENESS", NUMBA_VERSIONS):
         return False
     from numba.core import analysis, ir_utils
 

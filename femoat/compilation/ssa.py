@@ -20,8 +20,9 @@ on the numba versions whose ``ssa`` module was read and tested (:data:`NUMBA_VER
 ``FEMOAT_FAST_SSA=0`` leaves numba's own.
 """
 
-import os
 from collections import defaultdict
+
+from femoat.compilation import numba_version
 
 NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose ``numba.core.ssa`` this module was read and
@@ -32,11 +33,7 @@ _installed = []
 
 def supported():
     """Whether this numba's SSA module is one :func:`run_ssa` knows."""
-    import numba
-
-    version = tuple(int(x) for x in numba.__version__.split(".")[:2])
-    low, high = NUMBA_VERSIONS
-    return low <= version <= high
+    return numba_version.supported(NUMBA_VERSIONS)
 
 
 def install():
@@ -44,7 +41,7 @@ def install():
     is installed (False on an unknown numba, or with ``FEMOAT_FAST_SSA=0``)."""
     if _installed:
         return True
-    if os.environ.get("FEMOAT_FAST_SSA", "1") == "0" or not supported():
+    if not numba_version.wanted("FEMOAT_FAST_SSA", NUMBA_VERSIONS):
         return False
     from numba.core import ssa
 
