@@ -1,7 +1,7 @@
 """Start-up: what a fresh install and a new process pay before the solver runs.
 
     python benchmarks/startup.py [--skip-cold] [--compare-inliner] [--compare-ssa]
-                                 [--compare-typing]
+                                 [--compare-typing] [--compare-machine-code]
 
 Prints, each in a fresh Python process:
 
@@ -22,7 +22,9 @@ minutes). ``--compare-ssa``: step 1 again with numba's own SSA reconstruction
 step 1 again with numba's own liveness analysis, call typing and flags
 (``FEMOAT_FAST_LIVENESS=0 FEMOAT_CALL_TYPES_MEMO=0 FEMOAT_FAST_FLAGS=0``:
 :mod:`femoat.compilation.liveness`, :mod:`~femoat.compilation.call_types` and
-:mod:`~femoat.compilation.flags` not installed).
+:mod:`~femoat.compilation.flags` not installed). ``--compare-machine-code``: step 1 again
+with every kernel compiled to machine code at once, as numba does
+(``FEMOAT_LAZY_MACHINE_CODE=0``: :mod:`femoat.compilation.machine_code` builds nothing late).
 
 Numbers go to docs/startup.md and the README; nothing here is asserted.
 """
@@ -116,6 +118,9 @@ def main(argv=None):
                     help="also the cold compile with numba's own liveness analysis, call "
                          "typing and flags (FEMOAT_FAST_LIVENESS=0 FEMOAT_CALL_TYPES_MEMO=0 "
                          "FEMOAT_FAST_FLAGS=0)")
+    ap.add_argument("--compare-machine-code", action="store_true",
+                    help="also the cold compile with every kernel compiled to machine code at "
+                         "once (FEMOAT_LAZY_MACHINE_CODE=0)")
     args = ap.parse_args(argv)
     base = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT),
                                                          os.environ.get("PYTHONPATH", "")])}
@@ -134,7 +139,9 @@ def main(argv=None):
             for wanted, switches, what in (
                     (args.compare_inliner, ("FEMOAT_FAST_INLINE",), "inliner"),
                     (args.compare_ssa, ("FEMOAT_FAST_SSA",), "SSA reconstruction"),
-                    (args.compare_typing, typing, "liveness, call typing and flags")):
+                    (args.compare_typing, typing, "liveness, call typing and flags"),
+                    (args.compare_machine_code, ("FEMOAT_LAZY_MACHINE_CODE",),
+                     "machine code for every kernel")):
                 if wanted:
                     off = dict.fromkeys(switches, "0")
                     with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:

@@ -16,6 +16,10 @@
   installed with the first kernel, on the numba version they were read against, each with a
   switch that leaves numba's own (both decided in :mod:`~femoat.compilation.numba_version`).
 
+* :mod:`~femoat.compilation.machine_code`: a kernel compiled for its callers stops at its
+  optimized LLVM module (what its callers link); its machine code and Python wrapper are built
+  when Python first calls it.
+
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.
 

@@ -15,6 +15,8 @@ here), so kernels call kernels at full speed and numba's on-disk cache works as 
 import functools
 import sys
 
+from femoat.compilation import machine_code
+
 _registered = False
 _checked = set()
 _started = []
@@ -77,6 +79,7 @@ class Kernel:
                 self.py_func)
             if self.options.get("inline", "never") == "never":
                 _compile_for_types(self._dispatcher)
+            machine_code.defer(self._dispatcher)
             _started.append(self)
         return self._dispatcher
 
@@ -95,6 +98,7 @@ class Kernel:
 
             self._python_dispatcher = numba.njit(**{**OPTIONS, **self.options})(
                 _python_copy(self.py_func))
+            machine_code.defer(self._python_dispatcher)
             _started.append(self)
         return self._python_dispatcher
 
@@ -183,6 +187,7 @@ def _register():
 
     from femoat.compilation import call_types, flags, inlining, liveness, ssa
 
+    machine_code.install()
     inlining.install()
     ssa.install()
     liveness.install()

@@ -6,7 +6,9 @@ and the suite's code version (:func:`femoat.suite.definition.code_version`). Two
 
 * ``"kernels"``: what numba compiles. Whole folders, because a kernel inlines its siblings'
   kernels and reads their constants (option slots, law and material codes, bundles), plus the
-  compile options in :mod:`femoat.compilation.jit`.
+  compile options in :mod:`femoat.compilation.jit` and what numba's cache holds of a kernel
+  compiled for its callers (:mod:`femoat.compilation.machine_code`, installed on the numba
+  versions :mod:`femoat.compilation.numba_version` accepts).
 * ``"results"``: everything that can change a run's result: the package but the command line,
   plotting, rendering, OpenSees, the studies and the suite machinery besides its run path.
 
@@ -24,8 +26,9 @@ from femoat.atomic import write_text
 PACKAGE = Path(__file__).resolve().parents[1]
 """femoat's package folder (the default root of every scope)."""
 
-KERNELS = ("bearings", "checks.py", "compilation/jit.py", "contact", "integration",
-           "structure/materials", "units.py")
+KERNELS = ("bearings", "checks.py", "compilation/jit.py", "compilation/machine_code.py",
+           "compilation/numba_version.py", "contact", "integration", "structure/materials",
+           "units.py")
 """The kernel sources, relative to the package folder: a file, or a folder's ``*.py`` files."""
 
 NOT_RESULTS = ("commands", "plotting", "render", "opensees", "studies", "suite")

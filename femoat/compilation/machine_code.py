@@ -1,0 +1,259 @@
+"""A kernel's machine code and Python wrapper built when Python first calls it, not before.
+
+numba compiles every function it types to machine code at once and builds, beside it, the
+wrapper that converts Python arguments (``NativeLowering``: ``create_cpython_wrapper``, then
+``get_executable``, which finalizes the library into the JIT engine). For a kernel that only
+other kernels call, both are thrown away: a caller links the kernel's optimized LLVM module
+(``add_linking_library``) into its own and compiles it again there, with the caller. femoat's
+loop calls about 170 such kernels, so a cold compile spent a fifth of its time on machine code
+and wrappers nobody ran.
+
+Here a kernel compiled while numba types one of its callers (and not because Python called it)
+stops after LLVM's passes: its library is finalized without entering the JIT engine, the
+wrapper is not built, and its entry point is a :class:`LazyEntry`, the key under which numba's
+lowering finds the kernel's code for its callers. numba's on-disk cache keeps it as its
+optimized module (:data:`KIND`, no object code). The first call from Python makes what numba
+would have made: a library holding the wrapper and the kernel's module, finalized (linked,
+optimized, compiled to machine code), numba's ``cfunc`` over it, the dispatcher's overload
+and its on-disk cache entry replaced by that ordinary one (:func:`materialize`).
+
+A caller's code is the same either way: it links the same optimized module of the kernel (the
+wrapper, if built, is dropped from a caller as unused). What changes is when, and whether, the
+kernel's own machine code is built.
+
+Installed with femoat's other numba replacements (:mod:`femoat.compilation.jit`), on the numba
+versions whose ``codegen``, ``cpu``, ``lowering`` and ``dispatcher`` modules were read and
+tested (:data:`NUMBA_VERSIONS`); ``FEMOAT_LAZY_MACHINE_CODE=0`` compiles every kernel at once
+as numba does (a cache entry of :data:`KIND` still loads).
+"""
+
+import threading
+
+from femoat.compilation import numba_version
+
+NUMBA_VERSIONS = ((0, 68), (0, 68))
+"""The first and last numba minor versions whose code-library, lowering and dispatcher code
+this module was read and tested against (both ends included)."""
+
+KIND = "femoat-optimized-module"
+"""numba's serialization kind (``CodeLibrary._unserialize``) of a cache entry without machine
+code: the library's optimized LLVM module as bitcode."""
+
+_installed = []
+_state = threading.local()
+
+
+def install():
+    """Teach numba the library without machine code (once a process): its finalizing, its
+    entry point, its cache entry. Returns whether it is installed (False on an unknown numba).
+    Which compiles produce such libraries is decided per dispatcher (:func:`defer`)."""
+    if _installed:
+        return True
+    if not numba_version.supported(NUMBA_VERSIONS):
+        return False
+    from numba.core import codegen, cpu, lowering
+
+    library = codegen.CPUCodeLibrary
+    for cls, name, replacement in (
+            (library, "_finalize_final_module", _finalize_final_module),
+            (library, "serialize_using_object_code", _serialize),
+            (codegen.JITCPUCodegen, "set_env", _set_env),
+            (cpu.CPUContext, "get_executable", _get_executable),
+            (lowering.BaseLower, "lower", _lower),
+            (lowering.BaseLower, "create_cpython_wrapper", _create_cpython_wrapper)):
+        replacement.__wrapped__ = getattr(cls, name)
+        setattr(cls, name, replacement)
+    _unserialize.__wrapped__ = library._unserialize.__func__
+    library._unserialize = classmethod(_unserialize)
+    _installed.append(True)
+    return True
+
+
+def enabled():
+    """Whether kernels compiled for their callers skip machine code in this process."""
+    return bool(_installed) and numba_version.wanted("FEMOAT_LAZY_MACHINE_CODE", NUMBA_VERSIONS)
+
+
+def defer(dispatcher):
+    """Make ``dispatcher`` (a femoat kernel's numba dispatcher) build machine code only for a
+    call from Python: compiled (or loaded from the cache) while numba types a caller, it stops
+    at its optimized module. When not :func:`enabled`, a deferred cache entry is built at once
+    on loading. No-op unless :func:`install` ed."""
+    if not _installed:
+        return dispatcher
+    deferring = enabled()
+    compile_ = dispatcher.compile
+    compile_for_args = dispatcher._compile_for_args
+    add_overload = dispatcher.add_overload
+
+    def compile(sig):
+        requests = _stack("requests")
+        build = not deferring or (bool(requests) and requests[-1] is dispatcher)
+        requests.append(None)  # what this compile compiles in turn is for its callers
+        modes = _stack("modes")
+        modes.append((dispatcher.py_func, not build))
+        try:
+            entry = compile_(sig)
+        finally:
+            modes.pop()
+            requests.pop()
+        if build and isinstance(entry, LazyEntry):
+            entry = materialize(dispatcher, entry)
+        return entry
+
+    def _compile_for_args(*args, **kws):
+        requests = _stack("requests")
+        requests.append(dispatcher)
+        try:
+            return compile_for_args(*args, **kws)
+        finally:
+            requests.pop()
+
+    def _add_overload(cres):
+        if isinstance(cres.entry_point, LazyEntry):  # nothing Python can call yet
+            dispatcher.overloads[tuple(cres.signature.args)] = cres
+        else:
+            add_overload(cres)
+
+    dispatcher.compile = compile
+    dispatcher._compile_for_args = _compile_for_args
+    dispatcher.add_overload = _add_overload
+    return dispatcher
+
+
+class LazyEntry:
+    """The entry point of a kernel compiled without machine code: the key under which numba's
+    lowering finds the kernel's code (``insert_user_function``). Called (numba's dispatcher
+    hands it a call from Python it could not match to compiled code), it is built first."""
+
+    __slots__ = ("library", "fndesc", "environment", "release_gil", "__weakref__")
+
+    def __init__(self, library, fndesc, environment, release_gil):
+        self.library = library
+        self.fndesc = fndesc
+        self.environment = environment
+        self.release_gil = release_gil
+
+    def __repr__(self):
+        return f"<kernel {self.fndesc.qualname} without machine code>"
+
+
+def materialize(dispatcher, entry):
+    """Build a deferred overload of ``dispatcher`` (``entry``, its :class:`LazyEntry`) as numba
+    would have built it: the Python wrapper and the kernel's module in one library, optimized
+    and compiled to machine code; numba's ``cfunc`` over it becomes the overload's entry point,
+    in the dispatcher, in numba's lowering and in the on-disk cache. Returns the ``cfunc``."""
+    if entry.release_gil is None:
+        raise TypeError(f"{dispatcher.py_func.__qualname__} is compiled without numba's Python "
+                        "wrapper (no_cpython_wrapper=True; a femoat kernel declared "
+                        "python=False): call its python_dispatcher from Python")
+    from numba.core.compiler_lock import global_compiler_lock
+
+    with global_compiler_lock:
+        args, cres = next((args, cres) for args, cres in dispatcher.overloads.items()
+                          if cres.entry_point is entry)
+        context = cres.target_context
+        library = context.codegen().create_library(entry.library.name)
+        library.enable_object_caching()
+        context.create_cpython_wrapper(library, entry.fndesc, entry.environment, None,
+                                       release_gil=entry.release_gil)
+        library.add_linking_library(entry.library)
+        cfunc = _get_executable.__wrapped__(context, library, entry.fndesc, entry.environment)
+        _set_environments(library)
+        context.insert_user_function(cfunc, entry.fndesc, [library])
+        built = cres._replace(entry_point=cfunc, library=library)
+        dispatcher.overloads[args] = built
+        dispatcher._insert([a._code for a in args], cfunc, built.objectmode)
+        dispatcher._cache.save_overload(args, built)  # numba's cache key: the argument types
+    return cfunc
+
+
+def _stack(name):
+    stack = getattr(_state, name, None)
+    if stack is None:
+        stack = []
+        setattr(_state, name, stack)
+    return stack
+
+
+def _deferred(func):
+    """Whether the function ``func`` being lowered now is a deferred compile (:func:`defer`)."""
+    modes = getattr(_state, "modes", None)
+    return bool(modes) and modes[-1][0] is func and modes[-1][1]
+
+
+# numba's methods, replaced (each calls numba's own unless the library is deferred)
+
+def _lower(self):
+    if self.generator_info is None and _deferred(self.func_ir.func_id.func):
+        self.library._femoat_release_gil = None  # deferred; no wrapper asked for yet
+    return _lower.__wrapped__(self)
+
+
+def _create_cpython_wrapper(self, release_gil=False):
+    if hasattr(self.library, "_femoat_release_gil"):
+        self.library._femoat_release_gil = release_gil  # built by materialize, if ever
+        return None
+    return _create_cpython_wrapper.__wrapped__(self, release_gil)
+
+
+def _finalize_final_module(self):
+    if not hasattr(self, "_femoat_release_gil"):
+        return _finalize_final_module.__wrapped__(self)
+    # numba's, less entering the JIT engine and compiling to machine code
+    self._finalize_dynamic_globals()
+    self._verify_declare_only_symbols()
+    self._finalized = True
+    return None
+
+
+def _get_executable(self, library, fndesc, env):
+    if not hasattr(library, "_femoat_release_gil"):
+        cfunc = _get_executable.__wrapped__(self, library, fndesc, env)
+        _set_environments(library)
+        return cfunc
+    library._ensure_finalized()
+    return LazyEntry(library, fndesc, env, library._femoat_release_gil)
+
+
+def _set_env(self, env_name, env):
+    if self._engine.get_global_value_address(env_name):
+        return _set_env.__wrapped__(self, env_name, env)
+    return None  # in a deferred library's module only: set when it is built
+
+
+def _set_environments(library):
+    """Point the environment variables of the callees in ``library`` at their environments,
+    as numba does for a library loaded from its cache (``CompileResult._rebuild``): a deferred
+    callee's own module, where numba's ``get_executable`` would have set them, is not in the
+    JIT engine."""
+    if not _installed:
+        return
+    from numba.core.environment import lookup_environment
+
+    for gv in library._final_module.global_variables:
+        if gv.name.startswith("_ZN08NumbaEnv"):
+            env = lookup_environment(gv.name)
+            if env is not None:
+                library.codegen.set_env(gv.name, env)
+
+
+def _serialize(self):
+    if not hasattr(self, "_femoat_release_gil"):
+        return _serialize.__wrapped__(self)
+    self._ensure_finalized()
+    return (self.name, KIND, (self._final_module.as_bitcode(), self._femoat_release_gil))
+
+
+def _unserialize(cls, codegen, state):
+    name, kind, data = state
+    if kind != KIND:
+        return _unserialize.__wrapped__(cls, codegen, state)
+    import llvmlite.binding as ll
+
+    bitcode, release_gil = data
+    self = codegen.create_library(name)
+    self._femoat_release_gil = release_gil
+    self._final_module = ll.parse_bitcode(bitcode)
+    self._finalize_final_module()
+    return self

@@ -1,0 +1,157 @@
+"""A kernel's machine code built only when Python calls it (femoat.compilation.machine_code).
+
+What must hold: a kernel compiled for a caller gets no machine code and no Python wrapper; its
+caller computes what it computed before, with the same LLVM IR as when every kernel is built
+at once (``FEMOAT_LAZY_MACHINE_CODE=0``); a call from Python builds the kernel then, also from
+an on-disk cache entry written without machine code, and replaces that entry by an ordinary
+one; a kernel declared ``python=False`` says how to call it. Each case runs in a fresh process
+on a private numba cache. The solver's stored fingerprints (tests/test_fingerprints.py) are
+computed with it installed.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+KERNELS = '''
+from femoat.compilation.jit import njit
+
+
+@njit(cache=True)
+def spring(k, u):
+    """A hardening spring's force [kip]: k u + 0.1 k u^3 (k [kip/in], u [in])."""
+    return k * u + 0.1 * k * u ** 3
+
+
+@njit(cache=True)
+def work(k, u_max, n):
+    """The spring's work from 0 to u_max [kip in], trapezoid rule on n intervals."""
+    h = u_max / n
+    s = 0.5 * (spring(k, 0.0) + spring(k, u_max))
+    for i in range(1, n):
+        s += spring(k, i * h)
+    return s * h
+
+
+@njit(cache=True, python=False)
+def internal(k, u):
+    return 2.0 * spring(k, u)
+
+
+@njit(cache=True)
+def uses_internal(k, u):
+    return internal(k, u)
+'''
+
+PRELUDE = '''
+import json, sys
+from femoat.compilation import machine_code
+import springs
+built = []
+_materialize = machine_code.materialize
+def counting(dispatcher, entry):
+    built.append(dispatcher.py_func.__name__)
+    return _materialize(dispatcher, entry)
+machine_code.materialize = counting
+def lazy(kernel):
+    (cres,) = kernel.dispatcher.overloads.values()
+    return isinstance(cres.entry_point, machine_code.LazyEntry)
+out = {}
+'''
+
+FIRST = '''
+out["work"] = springs.work(2.0, 1.5, 2000)
+out["spring_lazy"] = lazy(springs.spring)
+out["uses_internal"] = springs.uses_internal(2.0, 1.5)
+out["internal_lazy"] = lazy(springs.internal)
+out["built_before"] = list(built)
+out["internal_error"] = ""
+if machine_code.enabled():  # (numba's own: a function without a wrapper, not to be called)
+    try:
+        springs.internal.dispatcher(2.0, 1.5)
+    except TypeError as e:
+        out["internal_error"] = str(e)
+ir = next(iter(springs.work.dispatcher.inspect_llvm().values()))
+out["work_ir"] = ir[ir.index("define"):]
+'''
+
+SECOND = '''
+out["spring"] = springs.spring(2.0, 1.5)
+out["spring_lazy"] = lazy(springs.spring)
+out["spring_hits"] = sum(springs.spring.dispatcher.stats.cache_hits.values())
+out["work"] = springs.work(2.0, 1.5, 2000)
+out["work_misses"] = sum(springs.work.dispatcher.stats.cache_misses.values())
+(args,) = springs.spring.dispatcher.overloads
+again = springs.spring.dispatcher._cache.load_overload(args, springs.spring.dispatcher.targetctx)
+out["cache_entry_lazy"] = isinstance(again.entry_point, machine_code.LazyEntry)
+'''
+
+DONE = '''
+out["built"] = built
+out["enabled"] = machine_code.enabled()
+print(json.dumps(out))
+'''
+
+
+def _run(tmp_path, body, cache, **env):
+    folder = tmp_path / "src"
+    folder.mkdir(exist_ok=True)
+    (folder / "springs.py").write_text(KERNELS)
+    code = textwrap.dedent(PRELUDE) + textwrap.dedent(body) + textwrap.dedent(DONE)
+    environ = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / cache), **env,
+               "PYTHONPATH": os.pathsep.join([str(folder), str(ROOT),
+                                              os.environ.get("PYTHONPATH", "")])}
+    r = subprocess.run([sys.executable, "-c", code], env=environ, capture_output=True,
+                       text=True, timeout=300, check=False)
+    assert r.returncode == 0, r.stderr[-3000:]
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def test_a_callee_gets_machine_code_when_python_calls_it_and_from_the_cache(tmp_path):
+    from femoat.compilation.machine_code import NUMBA_VERSIONS
+    from femoat.compilation.numba_version import supported
+
+    if not supported(NUMBA_VERSIONS):
+        pytest.skip("femoat.compilation.machine_code is not installed on this numba")
+    # The spring's work from 0 to U = 1.5 in with k = 2 kip/in: k U^2/2 + 0.1 k U^4/4
+    # = 2.25 + 0.253125 = 2.503125 kip in; the trapezoid rule's error is -(U^3/12) f''/n^2
+    # with f'' = 0.6 k u <= 1.8 kip/in^3: below 1.3e-7 kip in at n = 2000.
+    exact = 2.0 * 1.5 ** 2 / 2 + 0.1 * 2.0 * 1.5 ** 4 / 4
+    first = _run(tmp_path, FIRST, "cache")
+    assert first["enabled"]
+    assert abs(first["work"] - exact) < 2e-7
+    # compiled for work and for internal only: no machine code, nothing built
+    assert first["spring_lazy"] and first["internal_lazy"]
+    assert first["built_before"] == []
+    assert first["uses_internal"] == 2.0 * (2.0 * 1.5 + 0.1 * 2.0 * 1.5 ** 3)
+    assert "python_dispatcher" in first["internal_error"]
+
+    # a new process on that cache: work loads (no compile); the spring, called from Python,
+    # is built from its cache entry (an optimized module, no object code), then its entry is
+    # numba's ordinary one
+    shutil.copytree(tmp_path / "cache", tmp_path / "cache-first")
+    second = _run(tmp_path, SECOND, "cache")
+    assert second["work"] == first["work"] and second["work_misses"] == 0
+    # the same operations in the same order as Python's: 2*1.5 + (0.1*2)*1.5**3, 1.5**3 exact
+    assert second["spring"] == 2.0 * 1.5 + 0.1 * 2.0 * 1.5 ** 3
+    assert second["spring_hits"] == 1 and second["built"] == ["spring"]
+    assert not second["spring_lazy"] and not second["cache_entry_lazy"]
+
+    # every kernel built at once (the switch), on a cache of its own: the caller's LLVM IR
+    # and its result are the same as with its callee left without machine code
+    off = _run(tmp_path, FIRST, "cache-off", FEMOAT_LAZY_MACHINE_CODE="0")
+    assert not off["enabled"] and not off["spring_lazy"] and not off["internal_lazy"]
+    assert off["work"] == first["work"] and off["work_ir"] == first["work_ir"]
+    # ... and on the first process's cache, whose spring entry has no object code, a Python
+    # call builds it as well
+    off_warm = _run(tmp_path, SECOND, "cache-first", FEMOAT_LAZY_MACHINE_CODE="0")
+    assert off_warm["spring"] == second["spring"] and off_warm["work"] == first["work"]
+    assert off_warm["built"] == ["spring"] and not off_warm["cache_entry_lazy"]
