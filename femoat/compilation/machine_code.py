@@ -2,24 +2,26 @@
 
 numba compiles every function it types to machine code at once and builds, beside it, the
 wrapper that converts Python arguments (``NativeLowering``: ``create_cpython_wrapper``, then
-``get_executable``, which finalizes the library into the JIT engine). For a kernel that only
-other kernels call, both are thrown away: a caller links the kernel's optimized LLVM module
-(``add_linking_library``) into its own and compiles it again there, with the caller. femoat's
-loop calls about 170 such kernels, so a cold compile spent a fifth of its time on machine code
-and wrappers nobody ran.
+``get_executable``, which optimizes the library's module as a whole and compiles it into the
+JIT engine). For a kernel that only other kernels call, the machine code and the wrapper are
+thrown away: a caller links the kernel's LLVM module (``add_linking_library``) into its own,
+optimizes it again with the caller's code and compiles it there. femoat's loop calls about 170
+such kernels, so a cold compile spent a fifth of its time on code nobody ran.
 
 Here a kernel compiled while numba types one of its callers (and not because Python called it)
-stops after LLVM's passes: its library is finalized without entering the JIT engine, the
-wrapper is not built, and its entry point is a :class:`LazyEntry`, the key under which numba's
-lowering finds the kernel's code for its callers. numba's on-disk cache keeps it as its
-optimized module (:data:`KIND`, no object code). The first call from Python makes what numba
-would have made: a library holding the wrapper and the kernel's module, finalized (linked,
-optimized, compiled to machine code), numba's ``cfunc`` over it, the dispatcher's overload
-and its on-disk cache entry replaced by that ordinary one (:func:`materialize`).
+stops after LLVM's function passes: its library is finalized without the module passes and
+without entering the JIT engine, the wrapper is not built, and its entry point is a
+:class:`LazyEntry`, the key under which numba's lowering finds the kernel's code for its
+callers. The module passes (inlining across functions among them) run where the module is
+linked, in each caller, as they did there before. numba's on-disk cache keeps such a kernel as
+its module (:data:`KIND`, no object code). The first call from Python makes what numba would
+have made: a library holding the wrapper and the kernel's module, finalized (linked, optimized
+as a whole, compiled to machine code), numba's ``cfunc`` over it, the dispatcher's overload and
+its on-disk cache entry replaced by that ordinary one (:func:`materialize`).
 
-A caller's code is the same either way: it links the same optimized module of the kernel (the
-wrapper, if built, is dropped from a caller as unused). What changes is when, and whether, the
-kernel's own machine code is built.
+What a caller computes is unchanged (LLVM's optimizations keep IEEE arithmetic; the solver's
+fingerprints are equal to the bit either way); its machine code may differ, since its module
+passes now meet the callees' code before rather than after theirs.
 
 Installed with femoat's other numba replacements (:mod:`femoat.compilation.jit`), on the numba
 versions whose ``codegen``, ``cpu``, ``lowering`` and ``dispatcher`` modules were read and
@@ -55,6 +57,7 @@ def install():
 
     library = codegen.CPUCodeLibrary
     for cls, name, replacement in (
+            (library, "_optimize_final_module", _optimize_final_module),
             (library, "_finalize_final_module", _finalize_final_module),
             (library, "serialize_using_object_code", _serialize),
             (codegen.JITCPUCodegen, "set_env", _set_env),
@@ -195,6 +198,12 @@ def _create_cpython_wrapper(self, release_gil=False):
         self.library._femoat_release_gil = release_gil  # built by materialize, if ever
         return None
     return _create_cpython_wrapper.__wrapped__(self, release_gil)
+
+
+def _optimize_final_module(self):
+    if not hasattr(self, "_femoat_release_gil"):
+        return _optimize_final_module.__wrapped__(self)
+    return None  # the module passes run where the module is linked: in each caller
 
 
 def _finalize_final_module(self):
