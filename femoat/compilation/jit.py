@@ -185,9 +185,12 @@ def _register():
         return
     from numba.core.typing.typeof import typeof_impl
 
-    from femoat.compilation import call_types, flags, inlining, liveness, ssa
+    from femoat.compilation import (call_types, error_markup, flags, inlining, ir_builder,
+                                    liveness, ssa)
 
     machine_code.install()
+    error_markup.install()
+    ir_builder.install()
     inlining.install()
     ssa.install()
     liveness.install()
