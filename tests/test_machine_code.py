@@ -84,7 +84,13 @@ out["work_ir"] = re.sub(r"%[\w.$\-]+", "%v", ir[ir.index("define"):])  # values 
 '''
 
 SECOND = '''
+from numba import float64
+lazy_entry = springs.spring.dispatcher.compile((float64, float64))  # typed as a caller would
+out["typed_lazy"] = isinstance(lazy_entry, machine_code.LazyEntry)
 out["spring"] = springs.spring(2.0, 1.5)
+(cres,) = springs.spring.dispatcher.overloads.values()
+out["built_once"] = out["typed_lazy"] and (
+    _materialize(springs.spring.dispatcher, lazy_entry) is cres.entry_point)
 out["spring_lazy"] = lazy(springs.spring)
 out["spring_hits"] = sum(springs.spring.dispatcher.stats.cache_hits.values())
 out["work"] = springs.work(2.0, 1.5, 2000)
@@ -143,6 +149,9 @@ def test_a_callee_gets_machine_code_when_python_calls_it_and_from_the_cache(tmp_
     # the same operations in the same order as Python's: 2*1.5 + (0.1*2)*1.5**3, 1.5**3 exact
     assert second["spring"] == 2.0 * 1.5 + 0.1 * 2.0 * 1.5 ** 3
     assert second["spring_hits"] == 1 and second["built"] == ["spring"]
+    # typed first (as for a caller: no machine code), then built by the call; building the
+    # same entry again (another thread that saw it unbuilt) returns the built code
+    assert second["typed_lazy"] and second["built_once"]
     assert not second["spring_lazy"] and not second["cache_entry_lazy"]
 
     # every kernel built at once (the switch), on a cache of its own: the caller's LLVM IR
@@ -156,3 +165,4 @@ def test_a_callee_gets_machine_code_when_python_calls_it_and_from_the_cache(tmp_
     off_warm = _run(tmp_path, SECOND, "cache-first", FEMOAT_LAZY_MACHINE_CODE="0")
     assert off_warm["spring"] == second["spring"] and off_warm["work"] == first["work"]
     assert off_warm["built"] == ["spring"] and not off_warm["cache_entry_lazy"]
+    assert not off_warm["typed_lazy"]  # built at once, on loading

@@ -153,8 +153,10 @@ def materialize(dispatcher, entry):
     from numba.core.compiler_lock import global_compiler_lock
 
     with global_compiler_lock:
-        args, cres = next((args, cres) for args, cres in dispatcher.overloads.items()
-                          if cres.entry_point is entry)
+        args = tuple(entry.fndesc.argtypes)
+        cres = dispatcher.overloads[args]
+        if cres.entry_point is not entry:  # built meanwhile (another thread's call)
+            return cres.entry_point
         context = cres.target_context
         library = context.codegen().create_library(entry.library.name)
         library.enable_object_caching()
