@@ -22,6 +22,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 KERNELS = '''
+from numba import objmode
+
 from femoat.compilation.jit import njit
 
 
@@ -49,6 +51,38 @@ def internal(k, u):
 @njit(cache=True)
 def uses_internal(k, u):
     return internal(k, u)
+
+
+@njit(cache=True)
+def uses_internal_too(k, u):
+    return 0.5 * internal(k, u)
+
+
+@njit(cache=True)
+def is_even(n):
+    return True if n == 0 else is_odd(n - 1)
+
+
+@njit(cache=True)
+def is_odd(n):
+    return False if n == 0 else is_even(n - 1)
+
+
+@njit(cache=True)
+def parity(n):
+    return is_odd(n)
+
+
+@njit(cache=True)
+def halved_in_python(x):
+    with objmode(y="float64"):
+        y = x / 2.0
+    return y
+
+
+@njit(cache=True)
+def calls_python(x):
+    return halved_in_python(x) + 1.0
 '''
 
 PRELUDE = '''
@@ -71,6 +105,8 @@ FIRST = r'''
 out["work"] = springs.work(2.0, 1.5, 2000)
 out["spring_lazy"] = lazy(springs.spring)
 out["uses_internal"] = springs.uses_internal(2.0, 1.5)
+out["parity"] = [springs.parity(n) for n in (0, 1, 6, 7)]  # mutual recursion below a caller
+out["calls_python"] = springs.calls_python(3.0)  # an object-mode block in a callee
 out["internal_lazy"] = lazy(springs.internal)
 out["built_before"] = list(built)
 out["internal_error"] = ""
@@ -93,11 +129,19 @@ out["built_once"] = out["typed_lazy"] and (
     _materialize(springs.spring.dispatcher, lazy_entry) is cres.entry_point)
 out["spring_lazy"] = lazy(springs.spring)
 out["spring_hits"] = sum(springs.spring.dispatcher.stats.cache_hits.values())
+out["uses_internal_too"] = springs.uses_internal_too(2.0, 1.5)  # new caller, cached callee
 out["work"] = springs.work(2.0, 1.5, 2000)
 out["work_misses"] = sum(springs.work.dispatcher.stats.cache_misses.values())
 (args,) = springs.spring.dispatcher.overloads
 again = springs.spring.dispatcher._cache.load_overload(args, springs.spring.dispatcher.targetctx)
 out["cache_entry_lazy"] = isinstance(again.entry_point, machine_code.LazyEntry)
+'''
+
+PLAIN = '''
+import numba
+plain = numba.njit(cache=True)(springs.spring.py_func)
+out["plain"] = plain(2.0, 1.5)
+out["plain_misses"] = sum(plain.stats.cache_misses.values())
 '''
 
 DONE = '''
@@ -139,6 +183,8 @@ def test_a_callee_gets_machine_code_when_python_calls_it_and_from_the_cache(tmp_
     assert first["built_before"] == []
     assert first["uses_internal"] == 2.0 * (2.0 * 1.5 + 0.1 * 2.0 * 1.5 ** 3)
     assert "python_dispatcher" in first["internal_error"]
+    # 7 is odd, 6, 0 are even (is_odd(n) = not is_even(n - 1), down to 0); 3.0/2 + 1 = 2.5
+    assert first["parity"] == [False, True, False, True] and first["calls_python"] == 2.5
 
     # a new process on that cache: work loads (no compile); the spring, called from Python,
     # is built from its cache entry (an optimized module, no object code), then its entry is
@@ -162,7 +208,17 @@ def test_a_callee_gets_machine_code_when_python_calls_it_and_from_the_cache(tmp_
     assert off["work"] == first["work"] and off["work_ir"] == first["work_ir"]
     # ... and on the first process's cache, whose spring entry has no object code, a Python
     # call builds it as well
+    shutil.copytree(tmp_path / "cache-first", tmp_path / "cache-plain")
     off_warm = _run(tmp_path, SECOND, "cache-first", FEMOAT_LAZY_MACHINE_CODE="0")
     assert off_warm["spring"] == second["spring"] and off_warm["work"] == first["work"]
     assert off_warm["built"] == ["spring"] and not off_warm["cache_entry_lazy"]
+    # a new caller of the python=False kernel, whose cache entry has no machine code and no
+    # wrapper to build: it links it as it is, with the switch off too (0.5 * 2 * 3.675)
+    assert off_warm["uses_internal_too"] == second["uses_internal_too"] == 0.5 * 2.0 * (
+        2.0 * 1.5 + 0.1 * 2.0 * 1.5 ** 3)
     assert not off_warm["typed_lazy"]  # built at once, on loading
+
+    # numba's own dispatcher over the same function, on the same cache file, never reads an
+    # entry without machine code (its index key is femoat's): it compiles the spring itself
+    plain = _run(tmp_path, PLAIN, "cache-plain")
+    assert plain["plain"] == second["spring"] and plain["plain_misses"] == 1

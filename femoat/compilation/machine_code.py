@@ -26,10 +26,14 @@ passes now meet the callees' code before rather than after theirs.
 Installed with femoat's other numba replacements (:mod:`femoat.compilation.jit`), on the numba
 versions whose ``codegen``, ``cpu``, ``lowering`` and ``dispatcher`` modules were read and
 tested (:data:`NUMBA_VERSIONS`); ``FEMOAT_LAZY_MACHINE_CODE=0`` compiles every kernel at once
-as numba does (a cache entry of :data:`KIND` still loads).
+as numba does (the replacements stay installed, so that a deferred cache entry still loads; it
+is then built at once). Not deferred: an object-mode block lifted from a kernel. A deferred
+kernel that mutual recursion calls through numba's run-time linker enters the JIT engine as it
+is (:func:`_link_recursion`), where the linker finds it.
 """
 
 import threading
+import weakref
 
 from femoat.compilation import numba_version
 
@@ -37,9 +41,10 @@ NUMBA_VERSIONS = ((0, 68), (0, 68))
 """The first and last numba minor versions whose code-library, lowering and dispatcher code
 this module was read and tested against (both ends included)."""
 
-KIND = "femoat-optimized-module"
+KIND = "femoat-module-without-machine-code"
 """numba's serialization kind (``CodeLibrary._unserialize``) of a cache entry without machine
-code: the library's optimized LLVM module as bitcode."""
+code (the library's LLVM module after the function passes, as bitcode), and the first item of
+its index key (:func:`_deferred_key`)."""
 
 _installed = []
 _state = threading.local()
@@ -80,27 +85,32 @@ def enabled():
 def defer(dispatcher):
     """Make ``dispatcher`` (a femoat kernel's numba dispatcher) build machine code only for a
     call from Python: compiled (or loaded from the cache) while numba types a caller, it stops
-    at its optimized module. When not :func:`enabled`, a deferred cache entry is built at once
-    on loading. No-op unless :func:`install` ed."""
+    at its module. Its cache entries without machine code are kept under an index key of their
+    own (:func:`_deferred_key`), which no other dispatcher reads. When not :func:`enabled`, a
+    deferred cache entry is built as soon as it is loaded (one with a Python wrapper to build).
+    No-op unless :func:`install` ed."""
     if not _installed:
         return dispatcher
     deferring = enabled()
     compile_ = dispatcher.compile
     compile_for_args = dispatcher._compile_for_args
     add_overload = dispatcher.add_overload
+    cache = dispatcher._cache
+    load_overload, save_overload = cache.load_overload, cache.save_overload
 
     def compile(sig):
         requests = _stack("requests")
-        build = not deferring or (bool(requests) and requests[-1] is dispatcher)
-        requests.append(None)  # what this compile compiles in turn is for its callers
+        for_python = bool(requests) and requests[-1] is dispatcher
         modes = _stack("modes")
-        modes.append((dispatcher.py_func, not build))
+        requests.append(None)  # what this compile compiles in turn is for its callers
+        modes.append((dispatcher.py_func, deferring and not for_python))
         try:
             entry = compile_(sig)
         finally:
             modes.pop()
             requests.pop()
-        if build and isinstance(entry, LazyEntry):
+        if isinstance(entry, LazyEntry) and (
+                for_python or (not deferring and entry.release_gil is not None)):
             entry = materialize(dispatcher, entry)
         return entry
 
@@ -118,16 +128,35 @@ def defer(dispatcher):
         else:
             add_overload(cres)
 
+    def _load_overload(sig, target_context):
+        found = load_overload(sig, target_context)
+        return found if found is not None else load_overload(_deferred_key(sig), target_context)
+
+    def _save_overload(sig, data):
+        deferred = isinstance(data.entry_point, LazyEntry)
+        return save_overload(_deferred_key(sig) if deferred else sig, data)
+
     dispatcher.compile = compile
     dispatcher._compile_for_args = _compile_for_args
     dispatcher.add_overload = _add_overload
+    cache.load_overload = _load_overload
+    cache.save_overload = _save_overload
     return dispatcher
+
+
+def _deferred_key(sig):
+    """The signature under which numba's cache index keeps a deferred entry of ``sig`` (the
+    argument types): never a signature numba itself asks for, so a dispatcher that cannot load
+    such an entry (not :func:`defer` red, or femoat's machinery not installed) never finds it
+    and compiles as usual."""
+    return (KIND, *sig)
 
 
 class LazyEntry:
     """The entry point of a kernel compiled without machine code: the key under which numba's
-    lowering finds the kernel's code (``insert_user_function``). Called (numba's dispatcher
-    hands it a call from Python it could not match to compiled code), it is built first."""
+    lowering finds the kernel's code (``insert_user_function``). Not callable: a call from
+    Python reaches the dispatcher's ``compile``, which builds it first (:func:`materialize`);
+    numba's dispatcher never holds it in its table of compiled code."""
 
     __slots__ = ("library", "fndesc", "environment", "release_gil", "__weakref__")
 
@@ -182,7 +211,8 @@ def _stack(name):
 
 
 def _deferred(func):
-    """Whether the function ``func`` being lowered now is a deferred compile (:func:`defer`)."""
+    """Whether the function ``func`` being lowered now is a deferred compile (:func:`defer`):
+    the kernel itself, not an object-mode block lifted from it (same function identity)."""
     modes = getattr(_state, "modes", None)
     return bool(modes) and modes[-1][0] is func and modes[-1][1]
 
@@ -190,7 +220,8 @@ def _deferred(func):
 # numba's methods, replaced (each calls numba's own unless the library is deferred)
 
 def _lower(self):
-    if self.generator_info is None and _deferred(self.func_ir.func_id.func):
+    if (self.generator_info is None and self.fndesc.native
+            and _deferred(self.func_ir.func_id.func)):
         self.library._femoat_release_gil = None  # deferred; no wrapper asked for yet
     return _lower.__wrapped__(self)
 
@@ -224,7 +255,45 @@ def _get_executable(self, library, fndesc, env):
         _set_environments(library)
         return cfunc
     library._ensure_finalized()
+    _link_recursion(library, fndesc)
     return LazyEntry(library, fndesc, env, library._femoat_release_gil)
+
+
+_needed = set()
+"""Symbols that a deferred library calls through numba's run-time linker (a recursive call:
+``.numba.unresolved$<symbol>``), not yet defined in the JIT engine."""
+_deferred_libraries = weakref.WeakValueDictionary()
+"""{a deferred kernel's symbol: its library}."""
+
+
+def _link_recursion(library, fndesc):
+    """Mutual recursion: a kernel typed inside its own compile is called through numba's
+    run-time linker (a pointer it fills when a module defining the symbol enters the JIT
+    engine). A deferred library never enters it, so the library defining such a symbol is put
+    there (compiled as it is, without its wrapper), whichever of the two is finalized first."""
+    prefix = ".numba.unresolved$"
+    for gv in library._final_module.global_variables:
+        if gv.name.startswith(prefix):
+            symbol = gv.name[len(prefix):]
+            target = _deferred_libraries.get(symbol)
+            if target is not None:
+                _enter_engine(target)
+            else:
+                _needed.add(symbol)
+    _deferred_libraries[fndesc.mangled_name] = library
+    if fndesc.mangled_name in _needed:
+        _needed.discard(fndesc.mangled_name)
+        _enter_engine(library)
+
+
+def _enter_engine(library):
+    """Compile a deferred library into the JIT engine as numba's finalizing would, less the
+    object-code cache hooks (its cache entry keeps no machine code)."""
+    if getattr(library, "_femoat_in_engine", False):
+        return
+    library._femoat_in_engine = True
+    library._codegen._add_module(library._final_module)
+    library._finalize_specific()
 
 
 def _set_env(self, env_name, env):
