@@ -88,7 +88,7 @@ def defer(dispatcher):
     at its module. Its cache entries without machine code are kept under an index key of their
     own (:func:`_deferred_key`), which no other dispatcher reads. When not :func:`enabled`, a
     deferred cache entry is built as soon as it is loaded (one with a Python wrapper to build).
-    No-op unless :func:`install` ed."""
+    No-op unless :func:`install` ran."""
     if not _installed:
         return dispatcher
     deferring = enabled()
@@ -147,8 +147,8 @@ def defer(dispatcher):
 def _deferred_key(sig):
     """The signature under which numba's cache index keeps a deferred entry of ``sig`` (the
     argument types): never a signature numba itself asks for, so a dispatcher that cannot load
-    such an entry (not :func:`defer` red, or femoat's machinery not installed) never finds it
-    and compiles as usual."""
+    such an entry (one :func:`defer` did not wrap, or a process without :func:`install`) never
+    finds it and compiles as usual."""
     return (KIND, *sig)
 
 
