@@ -17,8 +17,11 @@
   switch that leaves numba's own (both decided in :mod:`~femoat.compilation.numba_version`).
 
 * :mod:`~femoat.compilation.machine_code`: a kernel compiled for its callers stops at its
-  optimized LLVM module (what its callers link); its machine code and Python wrapper are built
-  when Python first calls it.
+  LLVM module (what its callers link and optimize); its machine code and Python wrapper are
+  built when Python first calls it.
+* :mod:`~femoat.compilation.error_markup` and :mod:`~femoat.compilation.ir_builder`: numba's
+  error messages marked up without wrapping the streams, llvmlite's builder positioned before
+  a terminator without a search (the same strings and positions).
 
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.
