@@ -9,7 +9,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 MODULES = {"inlining": "FEMOAT_FAST_INLINE", "ssa": "FEMOAT_FAST_SSA",
            "liveness": "FEMOAT_FAST_LIVENESS", "flags": "FEMOAT_FAST_FLAGS",
-           "call_types": "FEMOAT_CALL_TYPES_MEMO", "error_markup": "FEMOAT_FAST_ERROR_MARKUP"}
+           "call_types": "FEMOAT_CALL_TYPES_MEMO", "error_markup": "FEMOAT_FAST_ERROR_MARKUP",
+           "cache_load": "FEMOAT_CACHE_LOAD_WITHOUT_REFRESH"}
 
 
 def test_supported_is_a_closed_range_of_minor_versions(monkeypatch):

@@ -21,7 +21,11 @@ def test_importing_the_solver_does_not_import_numba(tmp_path):
 
 
 _COUNTS = (
-    "import json\n"
+    "import json, sys\n"
+    "from numba.core import base\n"
+    "refreshes = []\n"
+    "_refresh = base.BaseContext.refresh\n"
+    "base.BaseContext.refresh = lambda self: refreshes.append(1) or _refresh(self)\n"
     "from femoat.startup.warmup import warm_up\n"
     "from femoat.compilation.exports import EXPORTS\n"
     "from femoat.integration.solve import kernels\n"
@@ -31,19 +35,28 @@ _COUNTS = (
     "for name in EXPORTS:\n"
     "    d = getattr(k, name).dispatcher\n"
     "    out[name] = [sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())]\n"
-    "print(json.dumps(out))\n"
+    "refreshed = [len(refreshes), 'scipy.linalg' in sys.modules]\n"
+    "print(json.dumps({'counts': out, 'refreshed': refreshed}))\n"
 )
 
 
 def test_a_second_process_loads_every_entry_point_from_numbas_cache(tmp_path):
     # This process compiled (or loaded) the kernels and numba wrote them to its cache; a new
-    # process running the same probe must find every entry point there: a hit, no miss.
+    # process running the same probe must find every entry point there: a hit, no miss, and
+    # load them without refreshing numba's target context.
     warm_up()
     done = run_in(_COUNTS, _python_env(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
-    counts = json.loads(done.stdout.strip().splitlines()[-1])
-    for name, (hits, misses) in counts.items():
+    found = json.loads(done.stdout.strip().splitlines()[-1])
+    for name, (hits, misses) in found["counts"].items():
         assert hits >= 1 and misses == 0, (name, hits, misses)
+    # loaded without numba's context refresh (femoat.compilation.cache_load), so without the
+    # modules it imports: scipy.linalg among them (numba's BLAS check), a third of a warm start
+    from femoat.compilation import cache_load, jit
+
+    jit._register()
+    if cache_load._installed:
+        assert found["refreshed"] == [0, False]
 
 
 def test_femoat_compile_warms_the_cache_and_says_so(tmp_path):

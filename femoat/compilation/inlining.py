@@ -98,7 +98,8 @@ BUILDS = collections.Counter()
 
 
 def _ours(func):
-    return getattr(func, "__module__", "").split(".")[0] == "femoat"
+    # numba compiles functions of its own made with exec, whose __module__ is None
+    return (getattr(func, "__module__", None) or "").split(".")[0] == "femoat"
 
 
 def _memo_untyped_passes(original):

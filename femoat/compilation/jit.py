@@ -79,6 +79,7 @@ class Kernel:
                 self.py_func)
             if self.options.get("inline", "never") == "never":
                 _compile_for_types(self._dispatcher)
+            _load_without_refresh(self._dispatcher)
             machine_code.defer(self._dispatcher)
             _started.append(self)
         return self._dispatcher
@@ -98,6 +99,7 @@ class Kernel:
 
             self._python_dispatcher = numba.njit(**{**OPTIONS, **self.options})(
                 _python_copy(self.py_func))
+            _load_without_refresh(self._python_dispatcher)
             machine_code.defer(self._python_dispatcher)
             _started.append(self)
         return self._python_dispatcher
@@ -179,16 +181,26 @@ def _fresh_cache(func):
     drop_stale_cache(module_file, fingerprint("kernels"))
 
 
+def _load_without_refresh(dispatcher):
+    """Load ``dispatcher``'s cache entries without numba's context refresh
+    (:mod:`femoat.compilation.cache_load`, which decides nothing a kernel compiles to: it is not
+    a kernel source)."""
+    from femoat.compilation import cache_load
+
+    cache_load.without_refresh(dispatcher)
+
+
 def _register():
     global _registered
     if _registered:
         return
     from numba.core.typing.typeof import typeof_impl
 
-    from femoat.compilation import (call_types, error_markup, flags, inlining, ir_builder,
-                                    liveness, ssa)
+    from femoat.compilation import (cache_load, call_types, error_markup, flags, inlining,
+                                    ir_builder, liveness, ssa)
 
     machine_code.install()
+    cache_load.install()
     error_markup.install()
     ir_builder.install()
     inlining.install()

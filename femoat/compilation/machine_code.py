@@ -187,6 +187,7 @@ def materialize(dispatcher, entry):
         if cres.entry_point is not entry:  # built meanwhile (another thread's call)
             return cres.entry_point
         context = cres.target_context
+        context.refresh()  # numba lowers on a refreshed context; cache_load's load skips it
         library = context.codegen().create_library(entry.library.name)
         library.enable_object_caching()
         context.create_cpython_wrapper(library, entry.fndesc, entry.environment, None,
