@@ -183,11 +183,13 @@ def _fresh_cache(func):
 
 def _load_without_refresh(dispatcher):
     """Load ``dispatcher``'s cache entries without numba's context refresh
-    (:mod:`femoat.compilation.cache_load`, which decides nothing a kernel compiles to: it is not
-    a kernel source)."""
-    from femoat.compilation import cache_load
+    (:mod:`femoat.compilation.cache_load`) and save them under a lock between processes
+    (:func:`femoat.compilation.numba_cache.locked_saves`); neither decides what a kernel
+    compiles to (they are not kernel sources)."""
+    from femoat.compilation import cache_load, numba_cache
 
     cache_load.without_refresh(dispatcher)
+    numba_cache.locked_saves(dispatcher)
 
 
 def _register():

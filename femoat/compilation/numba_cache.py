@@ -86,3 +86,39 @@ def first_compile_lock(module_file):
             yield
         finally:
             fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+def locked_saves(dispatcher):
+    """Make ``dispatcher`` (a femoat kernel's numba dispatcher) save to numba's on-disk cache
+    under an exclusive lock beside the cache files (POSIX; elsewhere, or without an on-disk
+    cache, a no-op).
+
+    numba saves an entry by reading the kernel's index, adding the entry and its data file's
+    number, and writing both back. Two processes saving two entries of one kernel at once (the
+    compile helper of :mod:`femoat.compilation.compile_plan` beside the first run; a test
+    session's workers) could each read the index before the other wrote it and give both
+    entries the same data file: one key would then load the other's code. Under the lock the
+    read, the choice of the number and both writes are one step."""
+    from numba.core import caching
+
+    cache = getattr(dispatcher, "_cache", None)
+    if fcntl is None or not isinstance(cache, caching.Cache):
+        return dispatcher
+    save = cache.save_overload
+
+    def save_overload(sig, data):
+        try:
+            os.makedirs(cache._cache_path, exist_ok=True)
+            handle = open(os.path.join(cache._cache_path, "femoat-save.lock"), "a")
+        except OSError:
+            return save(sig, data)  # a folder numba cannot write either: it skips the save
+        with handle:
+            fcntl.flock(handle, fcntl.LOCK_EX)
+            try:
+                return save(sig, data)
+            finally:
+                fcntl.flock(handle, fcntl.LOCK_UN)
+
+    save_overload.__wrapped__ = save
+    cache.save_overload = save_overload
+    return dispatcher
