@@ -1,19 +1,21 @@
 """Start-up: what a fresh install and a new process pay before the solver runs.
 
     python benchmarks/startup.py [--skip-cold] [--compare-inliner] [--compare-ssa]
-                                 [--compare-typing] [--compare-machine-code]
+                                 [--compare-typing] [--compare-machine-code] [--compare-helper]
 
 Prints, each in a fresh Python process:
 
 1. **cold compile**: the solver's entry points compiled by numba from an empty cache (a private
-   NUMBA_CACHE_DIR): CPU per top-level kernel (numba's compile events) and in all;
+   NUMBA_CACHE_DIR), in one process (no compile helper): CPU per top-level kernel (numba's
+   compile events) and in all;
 2. **a plan run after it**: the extra kernels a first plan run compiles (signatures that are
    not the 1D probe's), from the same cache;
 3. **warm start**: a new process that finds the cache: wall and CPU from process start to a
    loaded solver (the probe run), and to a finished paper run; how many signatures it
    compiled (0: the cache served every one);
 4. **first femoat paper** on empty caches (``--quick`` skipped: the whole study and its
-   figures), end to end, wall clock.
+   figures), end to end, wall clock, with the compile helper of
+   :mod:`femoat.compilation.compile_plan` (``--compare-helper``: also without it).
 
 ``--compare-inliner``: step 1 again with numba's own inliner (``FEMOAT_FAST_INLINE=0``:
 :mod:`femoat.compilation.inlining` not installed), side by side with femoat's (a few more
@@ -118,6 +120,9 @@ def main(argv=None):
                     help="also the cold compile with numba's own liveness analysis, call "
                          "typing and flags (FEMOAT_FAST_LIVENESS=0 FEMOAT_CALL_TYPES_MEMO=0 "
                          "FEMOAT_FAST_FLAGS=0)")
+    ap.add_argument("--compare-helper", action="store_true",
+                    help="also the first femoat paper without the compile helper "
+                         "(FEMOAT_COMPILE_HELPER=0)")
     ap.add_argument("--compare-machine-code", action="store_true",
                     help="also the cold compile with every kernel compiled to machine code at "
                          "once (FEMOAT_LAZY_MACHINE_CODE=0)")
@@ -127,7 +132,7 @@ def main(argv=None):
     print(f"load average before: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
     if not args.skip_cold:
         with tempfile.TemporaryDirectory(prefix="femoat-startup-") as cache:
-            env = {**base, "NUMBA_CACHE_DIR": cache}
+            env = {**base, "NUMBA_CACHE_DIR": cache, "FEMOAT_COMPILE_HELPER": "0"}
             out, wall = _python(_COLD, env)
             cold = json.loads(out.strip().splitlines()[-1])
             print(f"1. cold compile of the solver's entry points: {cold['total']:.1f} s CPU "
@@ -145,7 +150,7 @@ def main(argv=None):
                 if wanted:
                     off = dict.fromkeys(switches, "0")
                     with tempfile.TemporaryDirectory(prefix="femoat-startup-") as plain:
-                        out, wall = _python(_COLD, {**base, "NUMBA_CACHE_DIR": plain, **off})
+                        out, wall = _python(_COLD, {**env, "NUMBA_CACHE_DIR": plain, **off})
                     own = json.loads(out.strip().splitlines()[-1])
                     print(f"   with numba's own {what} ({'=0 '.join(switches)}=0): "
                           f"{own['total']:.1f} s CPU ({wall:.1f} s wall); run_chunk "
@@ -159,16 +164,20 @@ def main(argv=None):
                   f"{warm['compiled']}")
             (_, wall), cpu = _cpu_of_children(lambda: _python(_PAPER_RUN, env))
             print(f"   ... to a finished paper run: {wall:.2f} s wall, {cpu:.2f} s CPU")
-        with tempfile.TemporaryDirectory(prefix="femoat-paper-") as work:
-            env = {**base, "NUMBA_CACHE_DIR": str(Path(work) / "numba"),
-                   "FEMOAT_CACHE": str(Path(work) / "cache")}
-            code = ("from femoat.cli import main; raise SystemExit(main(['paper', '--out', "
-                    f"{str(Path(work) / 'paper')!r}]))")
-            (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
-            print(f"4. first femoat paper on empty caches: {wall:.1f} s wall, {cpu:.1f} s CPU "
-                  f"(compile, 10 runs, figures)")
-            (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
-            print(f"   a second femoat paper: {wall:.1f} s wall, {cpu:.1f} s CPU")
+        for helper in ("1", "0") if args.compare_helper else ("1",):
+            with tempfile.TemporaryDirectory(prefix="femoat-paper-") as work:
+                env = {**base, "NUMBA_CACHE_DIR": str(Path(work) / "numba"),
+                       "FEMOAT_CACHE": str(Path(work) / "cache"), "FEMOAT_COMPILE_HELPER": helper}
+                code = ("from femoat.cli import main; raise SystemExit(main(['paper', '--out', "
+                        f"{str(Path(work) / 'paper')!r}]))")
+                (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
+                how = ("the compile helper beside it" if helper == "1"
+                       else "no helper: FEMOAT_COMPILE_HELPER=0")
+                print(f"4. first femoat paper on empty caches ({how}): {wall:.1f} s wall, "
+                      f"{cpu:.1f} s CPU (compile, 10 runs, figures)")
+                if helper == "1":
+                    (_, wall), cpu = _cpu_of_children(lambda: _python(code, env))
+                    print(f"   a second femoat paper: {wall:.1f} s wall, {cpu:.1f} s CPU")
     else:
         (out, wall), cpu = _cpu_of_children(lambda: _python(_WARM, base))
         warm = json.loads(out.strip().splitlines()[-1])

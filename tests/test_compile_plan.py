@@ -155,23 +155,24 @@ def test_no_helper_for_a_cached_loop_or_with_the_switch_off(monkeypatch):
     key = compile_plan.choice_key()
     (loop,) = [s for m, n, _, s in compile_plan.entries(plan, key) if (m, n) == compile_plan.LOOP]
     assert not compile_plan._missing(loop)
-    assert compile_plan._start_helper() is None
+    assert compile_plan._start_helper() == (None, None)
     monkeypatch.setenv(compile_plan.SWITCH, "0")
     monkeypatch.setattr(compile_plan, "_missing", lambda sig: True)  # even when cold
-    assert compile_plan._start_helper() is None
+    assert compile_plan._start_helper() == (None, None)
 
 
 def test_the_helper_stops_with_the_first_run(monkeypatch):
-    started = []
+    started, loops = [], []
 
     def sleeper():
         started.append(subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"]))
-        return started[-1]
+        return started[-1], lambda: loops.append(started[-1].poll())
 
     monkeypatch.setattr(compile_plan, "_helped", [])
     monkeypatch.setattr(compile_plan, "_start_helper", sleeper)
     with compile_plan.helper_while_compiling():
         assert started[0].poll() is None  # running beside the first run
+        assert loops == [None]  # the loop compiled first, the helper running
     assert started[0].poll() is not None  # stopped (terminated, not waited 60 s for)
     with compile_plan.helper_while_compiling():  # a later run: no helper
         pass

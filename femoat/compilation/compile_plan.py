@@ -4,11 +4,12 @@ numba compiles on one core. A cold start compiles the solver's loop (``run_chunk
 while numba types it, about 170 kernels that the loop calls without inlining them: about two
 fifths of the compile. On a machine with a second core, the process that compiles first (the
 holder of :func:`femoat.compilation.numba_cache.first_compile_lock`, when the loop is not in
-numba's cache) starts a helper process (:func:`helper_while_compiling`). The helper compiles
-the kernels of the plan in the reverse of the order the first process finishes them, each
-into numba's on-disk cache; the first process, reaching a callee, finds it there when the
-helper has finished it (a cache load instead of a compile) and compiles it itself otherwise.
-The two meet in the middle. The helper stops when the first run ends, or when it is done.
+numba's cache) starts a helper process (:func:`helper_while_compiling`) and compiles the loop
+first. The helper compiles the kernels of the plan in the reverse of the order a cold start
+finishes them, each into numba's on-disk cache; the first process, reaching a callee, finds it
+there when the helper has finished it (a cache load instead of a compile) and compiles it
+itself otherwise. The two meet in the middle. The helper stops when the first run ends, or when
+it is done.
 
 The plan (:data:`PLAN_FILE`): per choice of bearing kinds (:mod:`femoat.bearings.registry`),
 the femoat kernels a cold warm-up compiles, each with its argument types (numba's types,
@@ -94,8 +95,10 @@ def helper_while_compiling():
         yield
         return
     _helped.append(True)
-    helper = _start_helper()
+    helper, loop = _start_helper()
     try:
+        if helper is not None:  # the loop first: the helper meets it in the middle sooner
+            loop()
         yield
     finally:
         if helper is not None:
@@ -104,23 +107,34 @@ def helper_while_compiling():
 
 
 def _start_helper():
+    """(the helper process, a function compiling the loop) when a helper is wanted, else
+    (None, None)."""
     if os.environ.get(SWITCH, "1") == "0" or _cores() < 2:
-        return None
+        return None, None
     from femoat.compilation import numba_cache
 
     if numba_cache.fcntl is None:
-        return None
+        return None, None
     plan = load_plan()
     key = choice_key()
     if plan is None or key not in plan["choices"]:
-        return None
-    loop = [sig for module, name, _, sig in entries(plan, key) if (module, name) == LOOP]
-    if not loop or not _missing(loop[0]):
-        return None
-    return subprocess.Popen([sys.executable, "-m", "femoat.compilation.compile_plan",
-                             "--help-compile", key, str(os.getpid())],
-                            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
+        return None, None
+    loop = [(python, sig) for module, name, python, sig in entries(plan, key)
+            if (module, name) == LOOP]
+    if not loop or not _missing(loop[0][1]):
+        return None, None
+    helper = subprocess.Popen([sys.executable, "-m", "femoat.compilation.compile_plan",
+                               "--help-compile", key, str(os.getpid())],
+                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, start_new_session=True)
+    python, sig = loop[0]
+
+    def compile_loop():
+        from femoat.integration.driver import run_chunk
+
+        (run_chunk.python_dispatcher if python else run_chunk.dispatcher).compile(sig)
+
+    return helper, compile_loop
 
 
 def _cores():
@@ -135,7 +149,7 @@ def _missing(sig):
     from femoat.compilation import machine_code
     from femoat.integration.driver import run_chunk
 
-    dispatcher = run_chunk.dispatcher
+    dispatcher = run_chunk.python_dispatcher
     cache = getattr(dispatcher, "_cache", None)
     index_key = getattr(cache, "_index_key", None)
     if index_key is None:
