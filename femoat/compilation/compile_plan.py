@@ -123,10 +123,13 @@ def _start_helper():
             if (module, name) == LOOP]
     if not loop or not _missing(loop[0][1]):
         return None, None
-    helper = subprocess.Popen([sys.executable, "-m", "femoat.compilation.compile_plan",
-                               "--help-compile", key, str(os.getpid())],
-                              stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        helper = subprocess.Popen([sys.executable, "-m", "femoat.compilation.compile_plan",
+                                   "--help-compile", key, str(os.getpid())],
+                                  stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.DEVNULL, start_new_session=True)
+    except OSError:  # no Python to start (an embedded interpreter): compile alone
+        return None, None
     python, sig = loop[0]
 
     def compile_loop():
