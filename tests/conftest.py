@@ -260,7 +260,10 @@ def _background(code):
 def pytest_configure(config):
     if not _parallel_controller(config):
         return
+    # without the compile helper (femoat.compilation.compile_plan): the session keeps both
+    # cores busy, so a helper would only add the work the two processes do twice
     config._femoat_compile = proc = _background(
+        "import os; os.environ['FEMOAT_COMPILE_HELPER'] = '0'\n"
         "from femoat.startup.warmup import warm_up; warm_up()")
     if _POSIX:
         import tempfile

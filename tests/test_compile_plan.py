@@ -1,5 +1,5 @@
 """A helper process compiles the loop's callees beside the first compile
-(femoat.compilation.compile_plan), and saves to numba's cache are serialized between processes
+(femoat.compilation.compile_plan, femoat.startup.compile_helper), and saves to numba's cache are serialized between processes
 (femoat.compilation.numba_cache.locked_saves).
 
 What must hold: the recorded plan is the one of today's kernel sources and names femoat
@@ -23,6 +23,7 @@ from pathlib import Path
 import pytest
 
 from femoat.compilation import compile_plan, numba_cache
+from femoat.startup import compile_helper
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -35,7 +36,7 @@ def test_the_recorded_plan_is_todays_and_names_femoat_kernels():
         pytest.skip(f"the plan was recorded on numba {stored['numba']}: not used on this one")
     assert compile_plan.load_plan() is not None, (
         "femoat/compilation/compile_plan.json was recorded from other kernel sources: record "
-        "it again (python -m femoat.compilation.compile_plan --record)")
+        "it again (python -m femoat.startup.compile_helper --record)")
     plan = compile_plan.load_plan()
     from femoat.bearings import registry
 
@@ -82,11 +83,11 @@ def work(k, u_max, n):
 
 HELPER = '''
 import json, os, sys
-from femoat.compilation import compile_plan
+from femoat.startup import compile_helper
 plan = json.loads(open(sys.argv[1]).read())
-compile_plan.load_plan = lambda path=None: plan
-compile_plan.LOOP = ("springs", "work")
-compile_plan.help_compile(compile_plan.choice_key(), os.getppid())
+compile_helper.load_plan = lambda path=None: plan
+compile_helper.LOOP = ("springs", "work")
+compile_helper.help_compile(compile_helper.choice_key(), os.getppid())
 '''
 
 MAIN = '''
@@ -152,29 +153,31 @@ def test_no_helper_for_a_cached_loop_or_with_the_switch_off(monkeypatch):
     plan = compile_plan.load_plan()
     if plan is None:
         pytest.skip("no plan for these kernel sources and this numba")
-    key = compile_plan.choice_key()
+    from femoat.integration.solve import kernels
+
+    key = compile_helper.choice_key()
     (loop,) = [s for m, n, _, s in compile_plan.entries(plan, key) if (m, n) == compile_plan.LOOP]
-    assert not compile_plan._missing(loop)
-    assert compile_plan._start_helper() == (None, None)
+    assert not compile_plan._missing(kernels().run_chunk.python_dispatcher, loop)
+    assert compile_plan._start_helper(key, lambda: kernels().run_chunk) == (None, None)
     monkeypatch.setenv(compile_plan.SWITCH, "0")
-    monkeypatch.setattr(compile_plan, "_missing", lambda sig: True)  # even when cold
-    assert compile_plan._start_helper() == (None, None)
+    monkeypatch.setattr(compile_plan, "_missing", lambda d, sig: True)  # even when cold
+    assert compile_plan._start_helper(key, lambda: kernels().run_chunk) == (None, None)
 
 
 def test_the_helper_stops_with_the_first_run(monkeypatch):
     started, loops = [], []
 
-    def sleeper():
+    def sleeper(key, loop):
         started.append(subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"]))
         return started[-1], lambda: loops.append(started[-1].poll())
 
     monkeypatch.setattr(compile_plan, "_helped", [])
     monkeypatch.setattr(compile_plan, "_start_helper", sleeper)
-    with compile_plan.helper_while_compiling():
+    with compile_plan.helper_while_compiling("fp", None):
         assert started[0].poll() is None  # running beside the first run
         assert loops == [None]  # the loop compiled first, the helper running
     assert started[0].poll() is not None  # stopped (terminated, not waited 60 s for)
-    with compile_plan.helper_while_compiling():  # a later run: no helper
+    with compile_plan.helper_while_compiling("fp", None):  # a later run: no helper
         pass
     assert len(started) == 1
 
@@ -229,7 +232,7 @@ def test_recording_the_pendulums_plan_again_gives_the_stored_one(tmp_path):
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), compile_plan.SWITCH: "0",
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
     env.pop("FEMOAT_BEARINGS", None)
-    done = subprocess.run([sys.executable, "-m", "femoat.compilation.compile_plan",
+    done = subprocess.run([sys.executable, "-m", "femoat.startup.compile_helper",
                            "--record-one", "fp"], env=env, capture_output=True, text=True,
                           timeout=900, check=False)
     assert done.returncode == 0, done.stderr[-3000:]
@@ -238,3 +241,41 @@ def test_recording_the_pendulums_plan_again_gives_the_stored_one(tmp_path):
     again = [(e["module"], e["name"], e["python"], pickle.loads(base64.b64decode(e["signature"])))
              for e in listed["kernels"]]
     assert again == compile_plan.entries(plan, "fp")
+
+
+COLD_PAPER_RUN = '''
+import json, os
+from femoat.bearings import registry
+registry.select("fp")
+from femoat.compilation import jit
+from femoat.paper import paper_model, paper_motion
+from femoat.run import run
+result = run(paper_model("steel", "J"), paper_motion())
+hits = sum(sum(d.stats.cache_hits.values()) for k in jit._started
+           for d in (k._dispatcher, k._python_dispatcher) if d is not None)
+helper_cpu = os.times().children_user
+print(json.dumps({"peaks": {k: v for k, v in result.peaks.items() if "second" not in k},
+                  "hits": hits, "helper_cpu": helper_cpu}))
+'''
+
+
+@pytest.mark.slow
+def test_a_cold_paper_run_with_the_helper_loads_its_callees_and_gives_the_same_peaks(tmp_path):
+    # The pendulum's loop compiled on an empty cache with the helper beside it (about a
+    # minute): the first process loads callees the helper compiled (numba's cache hits: with
+    # no helper a cold process has none) and the run's peaks are this session's to the bit.
+    from femoat.paper import paper_model, paper_motion
+    from femoat.run import run
+
+    if compile_plan.load_plan() is None:
+        pytest.skip("no plan for these kernel sources and this numba")
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), compile_plan.SWITCH: "1",
+           "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
+    env.pop("FEMOAT_BEARINGS", None)
+    done = subprocess.run([sys.executable, "-c", COLD_PAPER_RUN], env=env, capture_output=True,
+                          text=True, timeout=900, check=False)
+    assert done.returncode == 0, done.stderr[-3000:]
+    cold = json.loads(done.stdout.strip().splitlines()[-1])
+    assert cold["hits"] > 0 and cold["helper_cpu"] > 0
+    here = run(paper_model("steel", "J"), paper_motion()).peaks
+    assert cold["peaks"] == {k: v for k, v in here.items() if "second" not in k}

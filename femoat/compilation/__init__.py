@@ -22,6 +22,12 @@
 * :mod:`~femoat.compilation.error_markup` and :mod:`~femoat.compilation.ir_builder`: numba's
   error messages marked up without wrapping the streams, llvmlite's builder positioned before
   a terminator without a search (the same strings and positions).
+* :mod:`~femoat.compilation.cache_load`: a kernel loaded from numba's cache without numba's
+  refresh of its whole target context (which imports scipy.linalg, among others).
+* :mod:`~femoat.compilation.compile_plan`: a cold first run compiles the loop while a helper
+  process (:mod:`femoat.startup.compile_helper`) compiles its callees from a recorded plan
+  into numba's cache; :func:`~femoat.compilation.numba_cache.locked_saves` serializes the
+  processes' saves.
 
 The tiny run that compiles (or loads) every entry point before timing, which runs the solver, is
 one layer above it: :mod:`femoat.startup`.

@@ -143,11 +143,14 @@ def integrate(packed, ag, dt_rec, duration, integrator=None, u0=None, v0=None, p
     raising when the stepping cannot continue: the history, peaks, impacts and energies up
     to the time reached, and the status saying why it stopped. Bad input still raises
     ``ValueError``."""
+    from femoat.bearings import registry
     from femoat.compilation.compile_plan import helper_while_compiling
     from femoat.compilation.numba_cache import first_compile_lock
 
     # this process's first run: compile or load alone, a helper compiling beside it if cold
-    with first_compile_lock(_DRIVER_FILE), helper_while_compiling():
+    loop_kinds = ",".join(registry.keys()[k] for k in registry.compiled_kinds())
+    with (first_compile_lock(_DRIVER_FILE),
+          helper_while_compiling(loop_kinds, lambda: kernels().run_chunk)):
         return _integrate(packed, ag, dt_rec, duration, integrator, u0, v0, progress, chunks,
                           lazy, channels, limits, stop_at_limit, history)
 
