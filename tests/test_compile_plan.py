@@ -182,44 +182,101 @@ def test_the_helper_stops_with_the_first_run(monkeypatch):
     assert len(started) == 1
 
 
+def _saved_module(tmp_path, monkeypatch):
+    # a module of its own in tmp_path: numba caches it beside it (or under the session's
+    # NUMBA_CACHE_DIR, in a folder named after its path)
+    (tmp_path / "src").mkdir()
+    (tmp_path / "src" / "saved.py").write_text("def f(x):\n    return x * x + 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path / "src"))
+    monkeypatch.delitem(sys.modules, "saved", raising=False)  # another test's file
+    import saved
+
+    return saved
+
+
 @pytest.mark.skipif(numba_cache.fcntl is None, reason="no fcntl: the lock is POSIX only")
-def test_a_save_to_numbas_cache_holds_the_lock(tmp_path, monkeypatch):
+def test_an_entry_is_written_data_first_under_the_lock(tmp_path, monkeypatch):
     import fcntl
 
     import numba
 
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
-    (tmp_path / "src").mkdir()
-    (tmp_path / "src" / "saved.py").write_text("def f(x):\n    return 2.0 * x\n")
-    monkeypatch.syspath_prepend(str(tmp_path / "src"))
-    import saved
+    saved = _saved_module(tmp_path, monkeypatch)
 
     def probed(dispatcher):
-        save = dispatcher._cache.save_overload
-        held = []
+        files = dispatcher._cache._cache_file
+        lock = Path(files._cache_path) / "femoat-save.lock"
+        events = []
 
-        def probing(sig, data):
+        def held():
             # another open file description of the lock file cannot take it while it is held
-            with open(Path(dispatcher._cache._cache_path) / "femoat-save.lock", "a") as other:
+            lock.parent.mkdir(parents=True, exist_ok=True)
+            with open(lock, "a") as other:
                 try:
                     fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                    held.append(False)
                     fcntl.flock(other, fcntl.LOCK_UN)
+                    return False
                 except BlockingIOError:
-                    held.append(True)
-            return save(sig, data)
+                    return True
 
-        dispatcher._cache.save_overload = probing
-        return held
+        save_data, save_index = files._save_data, files._save_index
+        files._save_data = lambda *a: (events.append(("data", held())), save_data(*a))[1]
+        files._save_index = lambda *a: (events.append(("index", held())), save_index(*a))[1]
+        return events
 
     locked = numba.njit(cache=True)(saved.f)
-    held = probed(locked)
-    numba_cache.locked_saves(locked)  # around the probing save
-    assert locked(1.5) == 3.0 and held == [True]
-    # numba's own save, for another signature of a dispatcher of its own: no lock held
+    events = probed(locked)
+    numba_cache.locked_saves(locked)
+    assert locked(1.5) == 3.25 and events == [("data", True), ("index", True)]
+    # numba's own save (another signature, a dispatcher of its own): the index first, unlocked
     plain = numba.njit(cache=True)(saved.f)
-    held_plain = probed(plain)
-    assert plain(2) == 4.0 and held_plain == [False]
+    events_plain = probed(plain)
+    assert plain(2) == 5 and events_plain == [("index", False), ("data", False)]
+
+
+def test_a_write_stopped_halfway_never_lists_old_code(tmp_path, monkeypatch):
+    # A data file left from an index numba discarded holds old code (here: f for an integer,
+    # its index deleted as numba drops another version's). A new entry (f for a float) takes
+    # that file's number; the writer stops between its two writes. Written data first, the
+    # index never names the file, so a new process compiles; numba's order (index first)
+    # would list the old code under the new key: f(1.5) = 1*1 + 1 = 2, not 1.5^2 + 1 = 3.25.
+    import numba
+
+    saved = _saved_module(tmp_path, monkeypatch)
+
+    class Stopped(Exception):
+        pass
+
+    def entry_from(dispatcher):
+        return dispatcher._cache._cache_file
+
+    def stale():
+        first = numba.njit(cache=True)(saved.f)
+        assert first(3) == 10  # written: the index lists f.1 for an integer
+        files = first._cache._cache_file
+        Path(files._index_path).unlink()  # the index discarded, its data file left behind
+        return files
+
+    def stop(*args):
+        raise Stopped
+
+    for order in ("numba", "femoat"):
+        files = stale()
+        second = numba.njit(cache=True)(saved.f)
+        if order == "femoat":
+            numba_cache.locked_saves(second)
+            second._cache._cache_file._save_index = stop  # stopped after the data file
+        else:
+            second._cache._cache_file._save_data = stop  # after the index (numba's first)
+        with pytest.raises(Stopped):
+            second.compile((numba.float64,))
+        assert Path(files._index_path).exists() == (order == "numba")
+        third = numba.njit(cache=True)(saved.f)
+        loaded = third._cache.load_overload((numba.float64,), third.targetctx)
+        if order == "femoat":
+            assert loaded is None  # not listed: the next process compiles f for a float
+        else:
+            assert loaded is not None and loaded.entry_point(1.5) == 2  # the old code
+        Path(files._index_path).unlink(missing_ok=True)
 
 
 @pytest.mark.slow

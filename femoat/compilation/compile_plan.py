@@ -92,7 +92,11 @@ def helper_while_compiling(key, loop):
     finally:
         if helper is not None:
             helper.terminate()  # numba writes a cache file whole (a rename) or not at all
-            helper.wait()
+            try:
+                helper.wait(timeout=10)
+            except subprocess.TimeoutExpired:  # SIGTERM ignored (inherited so): kill it
+                helper.kill()
+                helper.wait()
 
 
 def _start_helper(key, kernel):
@@ -107,22 +111,30 @@ def _start_helper(key, kernel):
     plan = load_plan()
     if plan is None or key not in plan["choices"]:
         return None, None
-    loop = [(python, sig) for module, name, python, sig in entries(plan, key)
-            if (module, name) == LOOP]
+    try:
+        loop = [(python, sig) for module, name, python, sig in entries(plan, key)
+                if (module, name) == LOOP]
+    except Exception:  # noqa: BLE001 (types that do not unpickle here: compile alone)
+        return None, None
     if not loop:
         return None, None
     python, sig = loop[0]
     dispatcher = kernel().python_dispatcher if python else kernel().dispatcher
     if not _missing(dispatcher, sig):
         return None, None
+    from femoat.compilation import machine_code
+
+    package_root = str(Path(__file__).resolve().parents[2])  # the helper imports this femoat
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [package_root] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])}
     try:
         helper = subprocess.Popen([sys.executable, "-m", "femoat.startup.compile_helper",
-                                   "--help-compile", key, str(os.getpid())],
+                                   "--help-compile", key, str(os.getpid())], env=env,
                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                   stderr=subprocess.DEVNULL, start_new_session=True)
     except OSError:  # no Python to start (an embedded interpreter): compile alone
         return None, None
-    return helper, lambda: dispatcher.compile(sig)
+    return helper, lambda: machine_code.compile_for_python(dispatcher, sig)
 
 
 def _cores():

@@ -144,6 +144,18 @@ def defer(dispatcher):
     return dispatcher
 
 
+def compile_for_python(dispatcher, sig):
+    """Compile ``dispatcher`` (a :func:`defer`-wrapped dispatcher) for the argument types
+    ``sig`` as a call from Python would: machine code and wrapper at once, no deferred entry
+    (or load it from numba's cache). Returns the entry point."""
+    requests = _stack("requests")
+    requests.append(dispatcher)
+    try:
+        return dispatcher.compile(sig)
+    finally:
+        requests.pop()
+
+
 def _deferred_key(sig):
     """The signature under which numba's cache index keeps a deferred entry of ``sig`` (the
     argument types): never a signature numba itself asks for, so a dispatcher that cannot load

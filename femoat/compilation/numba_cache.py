@@ -89,36 +89,65 @@ def first_compile_lock(module_file):
 
 
 def locked_saves(dispatcher):
-    """Make ``dispatcher`` (a femoat kernel's numba dispatcher) save to numba's on-disk cache
-    under an exclusive lock beside the cache files (POSIX; elsewhere, or without an on-disk
-    cache, a no-op).
+    """Make ``dispatcher`` (a femoat kernel's numba dispatcher) write its on-disk cache entries
+    under an exclusive lock beside the cache files (POSIX), the data file before the index.
+    Without an on-disk cache a no-op; where the lock cannot be taken (not POSIX, a file system
+    without ``flock``), the entry is still written data first.
 
-    numba saves an entry by reading the kernel's index, adding the entry and its data file's
-    number, and writing both back. Two processes saving two entries of one kernel at once (the
-    compile helper of :mod:`femoat.compilation.compile_plan` beside the first run; a test
-    session's workers) could each read the index before the other wrote it and give both
-    entries the same data file: one key would then load the other's code. Under the lock the
-    read, the choice of the number and both writes are one step."""
+    numba writes an entry (``IndexDataCacheFile.save``) by reading the kernel's index, taking
+    the first data-file number the index does not list, writing the index, then the data
+    file. Two processes writing two entries of one kernel at once (the compile helper of
+    :mod:`femoat.compilation.compile_plan` beside the first run; a test session's workers)
+    could each read the index before the other wrote it and give both entries the same data
+    file: one key would then load the other's code. And a data file left from an index numba
+    discarded (another numba version's) still holds old code: a process reading the new index
+    before the new data file is written, or after the writer was stopped between the two,
+    would load that old code under the new key. Under the lock, reading the index, choosing
+    the number and both writes are one step; written data first, an index never names a data
+    file that is not yet its entry's."""
     from numba.core import caching
 
     cache = getattr(dispatcher, "_cache", None)
-    if fcntl is None or not isinstance(cache, caching.Cache):
+    if not isinstance(cache, caching.Cache):
         return dispatcher
-    save = cache.save_overload
+    files = cache._cache_file
 
-    def save_overload(sig, data):
-        try:
-            os.makedirs(cache._cache_path, exist_ok=True)
-            handle = open(os.path.join(cache._cache_path, "femoat-save.lock"), "a")
-        except OSError:
-            return save(sig, data)  # a folder numba cannot write either: it skips the save
-        with handle:
-            fcntl.flock(handle, fcntl.LOCK_EX)
+    def save(key, data):
+        handle = None
+        if fcntl is not None:
             try:
-                return save(sig, data)
-            finally:
+                os.makedirs(files._cache_path, exist_ok=True)
+                handle = open(os.path.join(files._cache_path, "femoat-save.lock"), "a")
+                fcntl.flock(handle, fcntl.LOCK_EX)
+            except OSError:  # no lock here (e.g. a mount without flock): write unlocked
+                if handle is not None:
+                    handle.close()
+                handle = None
+        try:
+            _save_data_first(files, key, data)
+        finally:
+            if handle is not None:
                 fcntl.flock(handle, fcntl.LOCK_UN)
+                handle.close()
 
-    save_overload.__wrapped__ = save
-    cache.save_overload = save_overload
+    save.__wrapped__ = files.save
+    files.save = save
     return dispatcher
+
+
+def _save_data_first(files, key, data):
+    """numba's ``IndexDataCacheFile.save`` (``files``), the data file written before the
+    index: the same data file name for ``key`` (its own if listed, else the first number the
+    index does not list), the same two files."""
+    import itertools
+
+    overloads = files._load_index()
+    name = overloads.get(key)
+    if name is None:
+        existing = set(overloads.values())
+        name = next(n for n in (files._data_name(i) for i in itertools.count(1))
+                    if n not in existing)
+    files._save_data(name, data)
+    if overloads.get(key) != name:
+        overloads[key] = name
+        files._save_index(overloads)
